@@ -68,7 +68,7 @@ void AFParser::parseBodyKey(AFBody& body, const Token& key) {
     } else if (key.isKeyword("density")) {
         SourceLocation where;
         body.density = in_.readFloat("density", &where);
-        if (!(body.density > 0))
+        if (body.density <= 0)
             diagnostics().error(where, "density must be greater than 0, found " + formatDeclFloat(body.density));
     } else if (key.isKeyword("inertiaScale")) {
         in_.expectPunctuation("(", "before the nine inertiaScale values");
@@ -128,7 +128,7 @@ AFShape AFParser::parseShape() {
         in_.expectPunctuation(",", "before the bone width");
         SourceLocation where;
         shape.width = in_.readFloat("the bone width", &where);
-        if (!(shape.width > 0))
+        if (shape.width <= 0)
             diagnostics().error(where, "the bone width must be greater than 0, found " + formatDeclFloat(shape.width));
     }
     in_.expectPunctuation(")", "after the shape arguments");

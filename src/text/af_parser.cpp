@@ -30,14 +30,24 @@ AFParseResult loadAFFile(const std::string& path) {
 }
 
 void AFParser::parseFile(AFFile& file) {
+    bool recovering = false;
     while (!in_.atEnd()) {
+        // After a broken decl (an unclosed string, say) its last braces may still be ahead; they
+        // are debris of the error already reported, not a new error.
+        if (recovering && in_.peek().isPunctuation("}")) {
+            in_.next();
+            continue;
+        }
         const int depth = in_.braceDepth();
         try {
             parseDecl(file);
+            recovering = false;
         } catch (const ParseAbort&) {
             in_.skipToDepth(depth);
+            recovering = true;
         }
     }
+    diagnostics().sortByPosition();
 }
 
 void AFParser::parseDecl(AFFile& file) {

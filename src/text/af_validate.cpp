@@ -31,7 +31,8 @@ void checkUniqueNames(const DeclAF& decl, Diagnostics& diagnostics) {
 
 void checkBodyReferences(const DeclAF& decl, const AFConstraint& c, Diagnostics& diagnostics) {
     const std::string label = std::string(toString(c.type)) + " \"" + c.name + "\"";
-    if (c.body1.empty() || equalsIgnoreCase(c.body1, "world") || !decl.findBody(c.body1)) {
+    const bool body1Valid = !c.body1.empty() && !equalsIgnoreCase(c.body1, "world") && decl.findBody(c.body1);
+    if (!body1Valid) {
         std::string message = label + ": body1 must name a body of this figure, found \"" + c.body1 + "\"";
         if (c.body1Where == c.where) message += " (body1 was not given)";
         diagnostics.error(c.body1Where, message);
@@ -43,7 +44,7 @@ void checkBodyReferences(const DeclAF& decl, const AFConstraint& c, Diagnostics&
                                               "\" is not a body of this figure; it is attached to the world, as in "
                                               "Doom 3");
     }
-    if (c.body1 == c.body2) diagnostics.error(c.body1Where, label + " joins body \"" + c.body1 + "\" to itself");
+    if (body1Valid && c.body1 == c.body2) diagnostics.error(c.body1Where, label + " joins body \"" + c.body1 + "\" to itself");
 }
 
 void checkNonZero(const AFVector& v, const std::string& what, SourceLocation fallback, Diagnostics& diagnostics) {

@@ -1,5 +1,7 @@
 #include "af/text/diagnostics.h"
 
+#include <algorithm>
+
 namespace af {
 
 std::string Diagnostic::format() const {
@@ -20,6 +22,12 @@ void Diagnostics::error(SourceLocation where, std::string message) {
 
 void Diagnostics::warning(SourceLocation where, std::string message) {
     items_.push_back({Severity::Warning, file_, where, std::move(message)});
+}
+
+void Diagnostics::sortByPosition() {
+    std::stable_sort(items_.begin(), items_.end(), [](const Diagnostic& a, const Diagnostic& b) {
+        return a.where.line != b.where.line ? a.where.line < b.where.line : a.where.column < b.where.column;
+    });
 }
 
 std::string Diagnostics::formatAll() const {

@@ -198,6 +198,7 @@ Token Lexer::readString(const char* start, char quote) {
     const TokenType type = quote == '"' ? TokenType::String : TokenType::Literal;
     if (!quotedRun(quote, nullptr)) return make(TokenType::Invalid, start, p_);
     Token t = make(type, start + 1, p_ - 1);
+    t.where = locate(start);  // a string is where its opening quote is
     if (type != TokenType::String) return t;
 
     // `"a" \ "b"` is one string "ab". Anything else after the backslash leaves both alone.

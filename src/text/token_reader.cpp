@@ -52,13 +52,13 @@ Real TokenReader::readFloat(std::string_view what, SourceLocation* where) {
     if (t.type != TokenType::Number) fail(t, "a number for " + std::string(what));
     if (t.numberKind == NumberKind::SpecialFloat) {
         diagnostics_.error(t.where, std::string(what) + " must be a finite number, found '" + std::string(t.text) + "'");
-        return 0;
+        return std::numeric_limits<Real>::quiet_NaN();
     }
     const float value = static_cast<float>(t.numberValue());
     if (!std::isfinite(value)) {
         diagnostics_.error(t.where, std::string(what) + " is out of range for a 32-bit float, found '" +
                                         std::string(t.text) + "'");
-        return 0;
+        return std::numeric_limits<Real>::quiet_NaN();
     }
     return negative ? -Real(value) : Real(value);
 }

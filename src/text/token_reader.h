@@ -37,7 +37,8 @@ public:
     Token expectString(std::string_view what);
 
     // [-] NUMBER, narrowed to float precision as Doom stores it. A value that is not finite as a
-    // float is an error (reported, parsing goes on). `where` receives the position of the value.
+    // float is an error (reported, parsing goes on) and reads as NaN, which range checks let
+    // pass so that it is not reported twice. `where` receives the position of the value.
     Real readFloat(std::string_view what, SourceLocation* where = nullptr);
     // [-] integer NUMBER; a float spelling is an error (reported, the value is truncated).
     int readInt(std::string_view what, SourceLocation* where = nullptr);

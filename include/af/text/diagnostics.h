@@ -45,6 +45,9 @@ public:
     std::size_t warningCount() const { return items_.size() - errors_; }
     bool hasErrors() const { return errors_ > 0; }
 
+    // Orders the diagnostics by line and column (stable), as a reader goes through the file.
+    void sortByPosition();
+
     // Every diagnostic, one formatted line each.
     std::string formatAll() const;
 
