@@ -1,0 +1,27 @@
+#pragma once
+// Eigen vocabulary of the geometry stage and the one bridge from Doom's angles to our rotations.
+//
+// Convention (see also af/types.h and doom3-af-spec.md §0.2): column vectors. A rotation R maps
+// body-local vectors to world (or model) vectors, p_world = origin + R * p_local, so the columns of
+// R are the body's local X, Y, Z axes written in world coordinates. Doom stores the transpose: its
+// "axis" matrix A has the local axes as rows and multiplies row vectors, p_world = origin + p_local·A.
+// Hence A = Rᵀ; convert exactly once, where a Doom value enters the library.
+
+#include "af/types.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
+
+namespace af {
+
+using Vec3 = Eigen::Matrix<Real, 3, 1>;
+using Mat3 = Eigen::Matrix<Real, 3, 3>;
+
+/// Rotation R (body-local → world, columns = local axes) of Doom's idAngles(pitch, yaw, roll).
+/// Angles in degrees. Equals the transpose of Doom's `idAngles::ToMat3()`: column 0 is forward
+/// (cp·cy, cp·sy, −sp), column 1 is left, column 2 is up. Positive pitch points the nose down
+/// (−Z), positive yaw turns counter-clockwise seen from above, positive roll lifts the left axis
+/// towards +Z. As a product of right-handed rotations: R = Rz(yaw) · Ry(pitch) · Rx(roll).
+Mat3 rotationFromAngles(Real pitchDeg, Real yawDeg, Real rollDeg);
+
+}  // namespace af

@@ -1,0 +1,69 @@
+// rotationFromAngles against Doom's stated behaviour (doom3-af-spec.md §0.2), checked through
+// independent routes: the sense of each angle, a product of axis rotations, and Doom's own
+// matrix → angles formulas applied to the transpose.
+
+#include "geometry_test_util.h"
+
+#include "af/geometry/math.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace af {
+namespace {
+
+using test::nearRelM;
+
+constexpr Real kDeg = std::numbers::pi_v<Real> / 180;
+
+TEST(Angles, ZeroAnglesGiveIdentity) {
+    EXPECT_TRUE(nearRelM(rotationFromAngles(0, 0, 0), Mat3::Identity(), 1e-15));
+}
+
+TEST(Angles, PositiveYawTurnsForwardCounterClockwiseSeenFromAbove) {
+    const Mat3 r = rotationFromAngles(0, 90, 0);
+    EXPECT_TRUE(nearRelM(Vec3(r * Vec3::UnitX()), Vec3(0, 1, 0), 1e-15));
+    EXPECT_TRUE(nearRelM(Vec3(r * Vec3::UnitY()), Vec3(-1, 0, 0), 1e-15));
+    EXPECT_TRUE(nearRelM(Vec3(r * Vec3::UnitZ()), Vec3(0, 0, 1), 1e-15));
+}
+
+TEST(Angles, PositivePitchPointsTheNoseDown) {
+    const Mat3 r = rotationFromAngles(90, 0, 0);
+    EXPECT_TRUE(nearRelM(Vec3(r * Vec3::UnitX()), Vec3(0, 0, -1), 1e-15));
+    EXPECT_TRUE(nearRelM(Vec3(r * Vec3::UnitZ()), Vec3(1, 0, 0), 1e-15));
+}
+
+TEST(Angles, PositiveRollLiftsTheLeftAxis) {
+    const Mat3 r = rotationFromAngles(0, 0, 90);
+    EXPECT_TRUE(nearRelM(Vec3(r * Vec3::UnitY()), Vec3(0, 0, 1), 1e-15));
+    EXPECT_TRUE(nearRelM(Vec3(r * Vec3::UnitX()), Vec3(1, 0, 0), 1e-15));
+}
+
+TEST(Angles, EqualsYawTimesPitchTimesRollAxisRotations) {
+    const Real angles[][3] = {{10, 20, 30}, {-35, 170, 5}, {80, -60, -120}, {0.5, 359, 181}};
+    for (const auto& a : angles) {
+        const Mat3 expected = test::rotationAbout(Vec3::UnitZ(), a[1] * kDeg) *
+                              test::rotationAbout(Vec3::UnitY(), a[0] * kDeg) *
+                              test::rotationAbout(Vec3::UnitX(), a[2] * kDeg);
+        EXPECT_TRUE(nearRelM(rotationFromAngles(a[0], a[1], a[2]), expected, 1e-14));
+    }
+}
+
+TEST(Angles, IsAProperRotation) {
+    const Mat3 r = rotationFromAngles(33, -71, 140);
+    EXPECT_TRUE(nearRelM(Mat3(r.transpose() * r), Mat3::Identity(), 1e-14));
+    EXPECT_NEAR(r.determinant(), 1, 1e-14);
+}
+
+TEST(Angles, DoomAxisIsTheTransposeAndInvertsWithDoomsFormulas) {
+    // §0.2: with axis A (rows = local axes), pitch = −asin(A[0][2]), yaw = atan2(A[0][1], A[0][0]),
+    // roll = atan2(A[1][2], A[2][2]). A = Rᵀ, so A[i][j] = R(j, i).
+    const Real pitch = 25, yaw = -130, roll = 65;
+    const Mat3 a = rotationFromAngles(pitch, yaw, roll).transpose();
+    EXPECT_NEAR(-std::asin(a(0, 2)) / kDeg, pitch, 1e-12);
+    EXPECT_NEAR(std::atan2(a(0, 1), a(0, 0)) / kDeg, yaw, 1e-12);
+    EXPECT_NEAR(std::atan2(a(1, 2), a(2, 2)) / kDeg, roll, 1e-12);
+}
+
+}  // namespace
+}  // namespace af
