@@ -33,12 +33,14 @@ constexpr std::array<std::uint8_t, 256> kClass = makeClasses();
 
 bool has(char c, std::uint8_t cls) { return (kClass[static_cast<unsigned char>(c)] & cls) != 0; }
 
-// The operators of C and C++, longest first within each length.
+// The operators of C and C++. Single characters first: the brackets and commas that make up
+// most of a decl never reach the longer lists.
+constexpr std::string_view kPunctuation1 = "*/%+-=&|^~!><.,;:?(){}[]\\#$@";
+constexpr std::string_view kMultiStart = "><.&|=!*/%+-^:#";  // first characters of longer operators
 constexpr std::string_view kPunctuation3[] = {">>=", "<<=", "..."};
 constexpr std::string_view kPunctuation2[] = {"&&", "||", ">=", "<=", "==", "!=", "*=", "/=", "%=", "+=",
                                              "-=", "++", "--", "&=", "|=", "^=", ">>", "<<", "->", "::",
                                              ".*", "##", "#@"};
-constexpr std::string_view kPunctuation1 = "*/%+-=&|^~!><.,;:?(){}[]\\#$@";
 
 std::uint64_t parseDigits(std::string_view digits, unsigned base) {
     std::uint64_t value = 0;
@@ -202,27 +204,24 @@ Token Lexer::readString(const char* start, char quote) {
     if (type != TokenType::String) return t;
 
     // `"a" \ "b"` is one string "ab". Anything else after the backslash leaves both alone.
+    // The white space skipped while looking is white space the next token would skip anyway.
     std::string* joined = nullptr;
     for (;;) {
-        const char* save = p_;
+        skipWhiteSpace();
+        if (p_ >= end_ || *p_ != '\\') break;
+        const char* backslash = p_;
         const char* saveLineStart = lineStart_;
         const int saveLine = line_;
+        ++p_;
         skipWhiteSpace();
-        if (p_ < end_ && *p_ == '\\') {
-            ++p_;
-            skipWhiteSpace();
-            if (p_ < end_ && *p_ == '"') {
-                if (!joined) {
-                    joined = &joinedStrings_.emplace_back(t.text);
-                }
-                if (!quotedRun('"', joined)) return make(TokenType::Invalid, start, p_);
-                continue;
-            }
+        if (p_ >= end_ || *p_ != '"') {
+            p_ = backslash;
+            lineStart_ = saveLineStart;
+            line_ = saveLine;
+            break;
         }
-        p_ = save;
-        lineStart_ = saveLineStart;
-        line_ = saveLine;
-        break;
+        if (!joined) joined = &joinedStrings_.emplace_back(t.text);
+        if (!quotedRun('"', joined)) return make(TokenType::Invalid, start, p_);
     }
     if (joined) t.text = *joined;
     return t;
@@ -305,11 +304,13 @@ Token Lexer::readNumber(const char* start) {
 
 Token Lexer::readPunctuation(const char* start) {
     const std::size_t left = static_cast<std::size_t>(end_ - start);
-    const std::string_view rest(start, left < 3 ? left : 3);
-    for (std::string_view p : kPunctuation3)
-        if (rest.starts_with(p)) return p_ = start + 3, make(TokenType::Punctuation, start, p_);
-    for (std::string_view p : kPunctuation2)
-        if (rest.starts_with(p)) return p_ = start + 2, make(TokenType::Punctuation, start, p_);
+    if (left > 1 && kMultiStart.find(*start) != std::string_view::npos) {
+        const std::string_view rest(start, left < 3 ? left : 3);
+        for (std::string_view p : kPunctuation3)
+            if (rest.starts_with(p)) return p_ = start + 3, make(TokenType::Punctuation, start, p_);
+        for (std::string_view p : kPunctuation2)
+            if (rest.starts_with(p)) return p_ = start + 2, make(TokenType::Punctuation, start, p_);
+    }
     p_ = start + 1;
     if (kPunctuation1.find(*start) != std::string_view::npos) return make(TokenType::Punctuation, start, p_);
     char shown[8];
