@@ -46,7 +46,7 @@ public:
             try {
                 parseDecl(file, depth);
             } catch (const ParseAbort&) {
-                in_.skipToDepth(depth);
+                resynchronise(depth);
             }
         }
     }
@@ -54,11 +54,31 @@ public:
 private:
     Diagnostics& diagnostics() { return in_.diagnostics(); }
 
-    // Skips to the `}` that brings the depth back to `depth`; the end of the file first is an error.
+    // Skips to the `}` that brings the depth back to `depth`; the end of the file first is an
+    // error, unless a lexical error inside the block (an unclosed string or comment, which eats
+    // the rest of the file) already explains it.
     void skipBlock(int depth, const Token& opened, std::string_view what) {
+        const std::size_t errorsBefore = diagnostics().errorCount();
         in_.skipToDepth(depth);
-        if (in_.braceDepth() > depth)
-            in_.fail(in_.peek(), "'}' to close " + std::string(what) + " opened at line " + std::to_string(opened.where.line));
+        if (in_.braceDepth() <= depth) return;
+        if (diagnostics().errorCount() != errorsBefore) throw ParseAbort{};
+        in_.fail(in_.peek(),
+                 "'}' to close " + std::string(what) + " opened at line " + std::to_string(opened.where.line));
+    }
+
+    // After an error, skips the rest of the broken decl so that it gives one message, not a
+    // cascade: inside a block, to its end; outside, past the next block or a `}` without a `{`.
+    void resynchronise(int depth) {
+        if (in_.braceDepth() > depth) {
+            in_.skipToDepth(depth);
+            return;
+        }
+        while (!in_.atEnd() && in_.braceDepth() == depth) {
+            if (in_.next().isPunctuation("{")) {
+                in_.skipToDepth(depth);
+                return;
+            }
+        }
     }
 
     Token readWord(std::string_view what) {
@@ -107,7 +127,8 @@ private:
     bool isRepeat(const std::vector<Decl>& decls, const Decl& decl, std::string_view kind) {
         for (const Decl& earlier : decls) {
             if (earlier.name != decl.name) continue;
-            diagnostics().warning(decl.where, std::string(kind) + " '" + decl.name + "' is defined again; the definition at line " +
+            diagnostics().warning(decl.where, std::string(kind) + " '" + decl.name +
+                                                  "' is defined again; the definition at line " +
                                                   std::to_string(earlier.where.line) + " is used");
             return true;
         }
@@ -129,7 +150,8 @@ private:
                 value.isPunctuation("}"))
                 in_.fail(value, "a value for \"" + std::string(key.text) + "\"");
             if (DefKeyValue* earlier = findKey(def, key.text)) {
-                diagnostics().warning(key.where, "key \"" + std::string(key.text) + "\" is set again (first at line " +
+                diagnostics().warning(key.where, "key \"" + std::string(key.text) +
+                                                     "\" is set again (first at line " +
                                                      std::to_string(earlier->where.line) + "); the later value is used");
                 earlier->value = value.text;
                 earlier->where = key.where;

@@ -101,12 +101,14 @@ void resolveEntity(Resolver<EntityDef>& r, const DefCollection& decls, std::size
     });
 
     auto find = [&](std::string_view name) -> std::optional<std::size_t> {
-        if (const EntityDef* p = decls.findEntityDef(name)) return static_cast<std::size_t>(p - decls.entityDefs().data());
+        if (const EntityDef* p = decls.findEntityDef(name))
+            return static_cast<std::size_t>(p - decls.entityDefs().data());
         return std::nullopt;
     };
     for (const DefKeyValue& inherit : inherits) {
         const std::string note = decls.findModel(inherit.value) ? " (there is a model decl of that name)" : "";
-        const std::optional<std::size_t> parent = r.enterParent(def, inherit.value, inherit.where, "entityDef", find, note);
+        const std::optional<std::size_t> parent =
+            r.enterParent(def, inherit.value, inherit.where, "entityDef", find, note);
         if (!parent) continue;
         resolveEntity(r, decls, *parent);
         const EntityDef& from = r.decls()[*parent];
@@ -161,7 +163,8 @@ void resolveModel(Resolver<ModelDecl>& r, const DefCollection& decls, std::size_
             if (const ModelDecl* p = decls.findModel(name)) return static_cast<std::size_t>(p - decls.models().data());
             return std::nullopt;
         };
-        const std::string note = decls.findEntityDef(written.inherit) ? " as a model decl (there is an entityDef of that name)" : "";
+        const std::string note =
+            decls.findEntityDef(written.inherit) ? " as a model decl (there is an entityDef of that name)" : "";
         parent = r.enterParent(written, written.inherit, written.inheritWhere, "model", find, note);
         if (parent) resolveModel(r, decls, *parent);
     }

@@ -96,9 +96,10 @@ private:
             const int used = std::popcount(joint.flags);
             const int last = used == 0 ? componentCount : componentCount - used;
             if (joint.firstComponent < 0 || joint.firstComponent > last) {
-                failAt(in_, where, "expected a first component index from 0 to " + std::to_string(last) + " (" +
-                                       std::to_string(used) + " animated components of " + std::to_string(componentCount) +
-                                       " in numAnimatedComponents), found " + quoted(joint.firstComponent));
+                failAt(in_, where, "expected a first component index from 0 to " + std::to_string(last) +
+                                       " (numAnimatedComponents " + std::to_string(componentCount) +
+                                       ", this joint animates " + std::to_string(used) + "), found " +
+                                       quoted(joint.firstComponent));
             }
             anim.joints.push_back(std::move(joint));
         }

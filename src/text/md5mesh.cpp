@@ -61,7 +61,8 @@ private:
                                    std::to_string(joint.parent) + "'");
         if (index > 0 && (joint.parent < 0 || joint.parent >= index))
             failAt(in_, where, "expected a parent index from 0 to " + std::to_string(index - 1) +
-                                   " (a parent comes before its children), found '" + std::to_string(joint.parent) + "'");
+                                   " (a parent comes before its children), found '" +
+                                   std::to_string(joint.parent) + "'");
 
         joint.position = readTuple3(in_, "the joint position");
         joint.orientation = readQuat(in_, "the joint orientation");
@@ -87,7 +88,8 @@ private:
             readTuple(in_, st, 2, "the texture coordinates");
             SourceLocation where;
             const int first = in_.readInt("the first weight", &where);
-            if (first < 0) failAt(in_, where, "expected a first weight of 0 or more, found '" + std::to_string(first) + "'");
+            if (first < 0)
+                failAt(in_, where, "expected a first weight of 0 or more, found '" + std::to_string(first) + "'");
             const int count = in_.readInt("the weight count", &where);
             if (count <= 0)
                 failAt(in_, where, "expected a weight count greater than 0, found '" + std::to_string(count) + "'");
@@ -113,7 +115,8 @@ private:
         // Doom only warns here, then reads weights past the end of its array.
         if (section.weightCount < weightsNeeded)
             failAt(in_, countWhere, "expected numweights of at least " + std::to_string(weightsNeeded) +
-                                        " (the vertices use that many), found '" + std::to_string(section.weightCount) + "'");
+                                        " (the vertices use that many), found '" +
+                                        std::to_string(section.weightCount) + "'");
         for (int i = 0; i < section.weightCount; ++i) {
             expectKeyword(in_, "weight", ordinalOf(i, section.weightCount, "numweights"));
             in_.readInt("the weight index");
