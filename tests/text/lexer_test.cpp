@@ -51,11 +51,18 @@ TEST(Lexer, StringsHaveNoEscapesAndLiteralsAreNotStrings) {
 }
 
 TEST(Lexer, BackslashJoinsTwoStrings) {
-    const auto t = lexClean("\"ab\" \\\n \"cd\" next");
-    ASSERT_EQ(t.size(), 2u);
-    EXPECT_EQ(t[0].text, "abcd");
-    EXPECT_EQ(t[1].text, "next");
-    EXPECT_EQ(t[1].where.line, 2);
+    Diagnostics d;
+    Lexer lexer("\"ab\" \\\n \"cd\" next \"x\" \\ y", d);  // a joined string lives in its lexer
+    const Token joined = lexer.next();
+    EXPECT_EQ(joined.type, TokenType::String);
+    EXPECT_EQ(joined.text, "abcd");
+    const Token next = lexer.next();
+    EXPECT_EQ(next.text, "next");
+    EXPECT_EQ(next.where.line, 2);
+    EXPECT_EQ(lexer.next().text, "x");
+    EXPECT_EQ(lexer.next().text, "\\");  // a backslash not followed by a string stays
+    EXPECT_EQ(lexer.next().text, "y");
+    EXPECT_FALSE(d.hasErrors());
 }
 
 TEST(Lexer, NumbersCarryNoSign) {

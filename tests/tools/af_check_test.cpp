@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -28,7 +29,9 @@ std::string slurp(const std::string& path) {
 // Runs af-check from the source tree, so paths in its output are the ones written here.
 ToolRun afCheck(const std::string& args) {
     static int counter = 0;
-    const std::string errPath = testing::TempDir() + "af_check_err_" + std::to_string(counter++);
+    // ctest runs tests of this program in parallel processes: the name must be unique to each.
+    const std::string errPath =
+        testing::TempDir() + "af_check_err_" + std::to_string(getpid()) + "_" + std::to_string(counter++);
     const std::string command = std::string("cd ") + AF_SOURCE_DIR + " && " + AF_CHECK_PATH + " " + args + " 2>" + errPath;
     ToolRun run;
     FILE* pipe = popen(command.c_str(), "r");

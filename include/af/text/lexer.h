@@ -49,7 +49,8 @@ std::string describe(const Token& token);
 
 class Lexer {
 public:
-    // `source` must outlive the lexer and its tokens.
+    // `source` must outlive the lexer and its tokens; a string joined with `\\` lives in the
+    // lexer itself, so tokens must not outlive the lexer either.
     Lexer(std::string_view source, Diagnostics& diagnostics);
 
     // The next token; TokenType::End at the end of the text (and from then on).
