@@ -1,0 +1,120 @@
+#pragma once
+// A figure: an .af decl made concrete against a skeleton pose (doom3-af-spec.md §3).
+//
+// Every body has its reference point at its centre of mass (as in Doom). Poses and constraint
+// vectors are in world space at spawn: the decl's model-space values (resolved against the
+// af_pose skeleton) moved by the spawn placement, world = placement.position +
+// placement.rotation * model. Lengths in file units, masses in the file's mass units, angles of
+// limits in degrees as written. Directions (axes, shafts) are unit vectors.
+
+#include "af/figure/skeleton.h"
+#include "af/geometry/polytope.h"
+#include "af/geometry/shapes.h"
+#include "af/text/decl_af.h"
+#include "af/text/diagnostics.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace af {
+
+// A rigid transform: p_outer = position + rotation * p_local.
+struct RigidPose {
+    Vec3 position = Vec3::Zero();
+    Mat3 rotation = Mat3::Identity();
+
+    Vec3 apply(const Vec3& p) const { return position + rotation * p; }
+    RigidPose operator*(const RigidPose& inner) const {
+        return {position + rotation * inner.position, rotation * inner.rotation};
+    }
+    RigidPose inverse() const { return {-(rotation.transpose() * position), rotation.transpose()}; }
+};
+
+struct FigureBody {
+    std::string name;
+    ShapeKind shapeKind = ShapeKind::box;
+    int sides = 0;                   // cylinder and cone: sides actually built
+    Polytope shape;                  // body frame, centre of mass at the origin
+    Real volume = 0;
+    Real mass = 0;                   // after totalMass scaling
+    Mat3 inertia = Mat3::Identity(); // about the centre of mass, body frame, inertiaScale applied
+    RigidPose pose;                  // world pose at spawn (position = centre of mass)
+
+    // How the body drives the skeleton (§3.6): the joint, and the body's pose in that joint's
+    // frame at the af_pose. The root body drives the first child of the `origin` joint.
+    int joint = -1;
+    JointMod mod = JointMod::Orientation;
+    RigidPose bodyInJoint;
+    std::vector<int> containedJoints;  // skeleton joints whose hits land on this body
+
+    Real linearFriction = 0;
+    Real angularFriction = 0;
+    Real contactFriction = 0;
+    Real bounciness = 0.4;  // Doom's physics default; .af files cannot set it
+    ContentsMask contents = 0;
+    ContentsMask clipMask = 0;
+    bool selfCollision = true;
+    std::optional<Vec3> frictionDirection;      // body frame, as resolved (not normalised)
+    std::optional<Vec3> contactMotorDirection;  // body frame
+    SourceLocation where;
+};
+
+inline constexpr int kWorld = -1;  // a constraint's body index meaning "the world"
+
+struct FigureConstraint {
+    ConstraintType type = ConstraintType::Fixed;
+    std::string name;
+    int body1 = 0;
+    int body2 = kWorld;
+    Vec3 anchor = Vec3::Zero();   // world; spring: anchor1
+    Vec3 anchor2 = Vec3::Zero();  // spring only: world
+    Vec3 axis = Vec3::UnitX();    // hinge, slider
+    Vec3 shafts[2] = {Vec3::UnitZ(), Vec3::UnitZ()};  // universal: both; ball and socket: [0] (limit)
+    LimitType limit = LimitType::None;
+    Vec3 limitAxis = -Vec3::UnitZ();
+    Real3 limitAngles{};
+    Real friction = 0;
+    Real stretch = 0, compress = 0, damping = 0, restLength = 0, minLength = 0, maxLength = 0;
+    SourceLocation where;
+};
+
+struct Figure {
+    std::string name;
+    AFSettings settings;
+    std::vector<FigureBody> bodies;  // body 0 is the root (joint "origin")
+    std::vector<FigureConstraint> constraints;
+    Skeleton afPose;                 // model space
+    RigidPose placement;             // model → world at spawn
+    std::vector<int> jointBody;      // per skeleton joint: the body whose containedJoints hold it, or -1
+
+    Real totalMass() const;
+    int findBody(std::string_view bodyName) const;
+};
+
+struct FigureResult {
+    std::optional<Figure> figure;        // empty when an error was found
+    std::vector<Diagnostic> diagnostics; // errors and warnings, each with its file and position
+
+    bool ok() const { return figure.has_value(); }
+    std::string formatDiagnostics() const;
+};
+
+// Builds the figure of `decl` against the af_pose skeleton and places it. `afFile` names the .af
+// file in diagnostics. Warnings flag what usually makes figures misbehave (spec §6): unknown
+// joints, mass ratios above 1:20 between jointed bodies, inertia tensors with principal moments
+// more than 20 apart, jointed bodies overlapping at spawn, bodies in more than one tree.
+FigureResult buildFigure(const DeclAF& decl, const Skeleton& afPose, const std::string& afFile,
+                         const RigidPose& placement = {});
+
+// The skeleton the bodies pose (§3.6), in world space: driven joints follow their bodies as
+// their `mod` says, every other joint follows its parent with its af_pose local transform, and
+// the root joint follows body 0. `bodyPoses` holds one world pose per body.
+Skeleton poseSkeleton(const Figure& figure, const std::vector<RigidPose>& bodyPoses);
+
+// The joints of a containedJoints list (§1.6): `name`, `*name` (with descendants), `-name` and
+// `-*name` (removals), left to right, case-insensitive. Unknown names are returned in `unknown`.
+std::vector<int> expandJointList(const Skeleton& skeleton, std::string_view list,
+                                 std::vector<std::string>* unknown = nullptr);
+
+}  // namespace af

@@ -1,0 +1,33 @@
+#pragma once
+// Shared state of one buildFigure call: the skeleton, the placement and the diagnostics.
+
+#include "af/figure/figure.h"
+
+#include <string>
+
+namespace af {
+
+struct FigureBuildContext {
+    const DeclAF& decl;
+    const Skeleton& skeleton;
+    const RigidPose& placement;
+    Diagnostics diagnostics;
+
+    // A decl vector in model space (§3.2): joint positions only, the negation applied last.
+    // A joint the skeleton lacks is warned about and counts as the origin, as in Doom 3.
+    Vec3 resolve(const AFVector& v);
+    // A resolved direction in world space, normalised; a zero direction is an error.
+    Vec3 worldDirection(const AFVector& v, const std::string& what);
+    Vec3 worldPoint(const AFVector& v) { return placement.apply(resolve(v)); }
+
+private:
+    Vec3 jointPosition(const std::string& name, SourceLocation where);
+};
+
+void buildBodies(FigureBuildContext& context, Figure& figure);
+void buildConstraints(FigureBuildContext& context, Figure& figure);
+void claimJoints(FigureBuildContext& context, Figure& figure);
+// The warnings about figures that tend to misbehave (mass and inertia ratios, overlap, trees).
+void checkFigure(FigureBuildContext& context, const Figure& figure);
+
+}  // namespace af

@@ -1,0 +1,105 @@
+// Warnings about figures that tend to misbehave (doom3-af-spec.md §6, items 1–2; iddevnet's
+// advice): very different masses across a joint, lopsided inertia, jointed bodies that start
+// inside each other, and bodies that are not all joined into one tree.
+
+#include "af/geometry/mass_properties.h"
+#include "figure_build_context.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+namespace af {
+
+namespace {
+
+constexpr Real kMaxMassRatio = 20;
+constexpr Real kMaxInertiaRatio = 20;
+constexpr Real kMaxOverlapFraction = 0.2;  // of the smaller body's volume
+constexpr int kOverlapSamples = 12;        // per axis
+
+std::string ratioText(Real r) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.1f", r);
+    return buffer;
+}
+
+bool inside(const Polytope& shape, const Vec3& p) {
+    for (const Face& f : shape.faces)
+        if (f.normal.dot(p) > f.offset + 1e-9) return false;
+    return true;
+}
+
+// The fraction of `a`'s volume that lies inside `b`, from a regular grid over `a`'s bounds:
+// deterministic, and plenty for a warning threshold.
+Real overlapFraction(const FigureBody& a, const FigureBody& b) {
+    Vec3 lo = Vec3::Constant(1e30), hi = Vec3::Constant(-1e30);
+    for (const Vec3& v : a.shape.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    const RigidPose aInB = b.pose.inverse() * a.pose;
+    int inA = 0, inBoth = 0;
+    for (int i = 0; i < kOverlapSamples; ++i)
+        for (int j = 0; j < kOverlapSamples; ++j)
+            for (int k = 0; k < kOverlapSamples; ++k) {
+                const Vec3 t((i + 0.5) / kOverlapSamples, (j + 0.5) / kOverlapSamples, (k + 0.5) / kOverlapSamples);
+                const Vec3 p = lo + (hi - lo).cwiseProduct(t);
+                if (!inside(a.shape, p)) continue;
+                ++inA;
+                if (inside(b.shape, aInB.apply(p))) ++inBoth;
+            }
+    return inA ? Real(inBoth) / inA : 0;
+}
+
+int root(std::vector<int>& parent, int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+}
+
+}  // namespace
+
+void checkFigure(FigureBuildContext& context, const Figure& figure) {
+    for (const FigureBody& b : figure.bodies) {
+        const Vec3 m = principalInertia(b.inertia).moments;
+        if (m[0] > 0 && m[2] / m[0] > kMaxInertiaRatio)
+            context.diagnostics.warning(b.where, "body \"" + b.name + "\": its principal moments of inertia differ by " +
+                                                     ratioText(m[2] / m[0]) +
+                                                     ":1 (more than 20:1); consider inertiaScale or a stouter shape");
+    }
+
+    std::vector<int> tree(figure.bodies.size());
+    std::iota(tree.begin(), tree.end(), 0);
+    for (const FigureConstraint& c : figure.constraints) {
+        if (c.body1 < 0 || c.body2 < 0) continue;
+        const FigureBody& a = figure.bodies[static_cast<std::size_t>(c.body1)];
+        const FigureBody& b = figure.bodies[static_cast<std::size_t>(c.body2)];
+        tree[static_cast<std::size_t>(root(tree, c.body1))] = root(tree, c.body2);
+        const std::string label = std::string(toString(c.type)) + " \"" + c.name + "\"";
+        const Real ratio = std::max(a.mass, b.mass) / std::min(a.mass, b.mass);
+        if (ratio > kMaxMassRatio)
+            context.diagnostics.warning(c.where, label + " joins \"" + a.name + "\" and \"" + b.name +
+                                                     "\", whose masses differ by " + ratioText(ratio) +
+                                                     ":1 (more than 20:1)");
+        if (c.type == ConstraintType::Spring) continue;
+        const FigureBody& smaller = a.volume <= b.volume ? a : b;
+        const FigureBody& larger = a.volume <= b.volume ? b : a;
+        const Real overlap = overlapFraction(smaller, larger);
+        if (overlap > kMaxOverlapFraction)
+            context.diagnostics.warning(c.where, label + ": \"" + smaller.name + "\" starts " +
+                                                     ratioText(100 * overlap) + "% inside \"" + larger.name + "\"");
+    }
+
+    std::vector<std::string> groups;
+    for (std::size_t i = 0; i < figure.bodies.size(); ++i)
+        if (root(tree, static_cast<int>(i)) == static_cast<int>(i)) groups.push_back(figure.bodies[i].name);
+    if (groups.size() > 1) {
+        std::string list;
+        for (const std::string& g : groups) list += (list.empty() ? "\"" : ", \"") + g + "\"";
+        context.diagnostics.warning(context.decl.where, "the bodies form " + std::to_string(groups.size()) +
+                                                            " separate trees (containing " + list +
+                                                            "); constraints join them into one in most figures");
+    }
+}
+
+}  // namespace af
