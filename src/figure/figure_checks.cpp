@@ -59,6 +59,24 @@ int root(std::vector<int>& parent, int i) {
 
 }  // namespace
 
+std::vector<std::vector<int>> bodyTrees(const Figure& figure) {
+    std::vector<int> parent(figure.bodies.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    for (const FigureConstraint& c : figure.constraints)
+        if (c.body1 >= 0 && c.body2 >= 0) parent[static_cast<std::size_t>(root(parent, c.body1))] = root(parent, c.body2);
+    std::vector<std::vector<int>> trees;
+    std::vector<int> treeOfRoot(figure.bodies.size(), -1);
+    for (std::size_t i = 0; i < figure.bodies.size(); ++i) {
+        int& t = treeOfRoot[static_cast<std::size_t>(root(parent, static_cast<int>(i)))];
+        if (t < 0) {
+            t = static_cast<int>(trees.size());
+            trees.emplace_back();
+        }
+        trees[static_cast<std::size_t>(t)].push_back(static_cast<int>(i));
+    }
+    return trees;
+}
+
 void checkFigure(FigureBuildContext& context, const Figure& figure) {
     for (const FigureBody& b : figure.bodies) {
         const Vec3 m = principalInertia(b.inertia).moments;
@@ -68,13 +86,10 @@ void checkFigure(FigureBuildContext& context, const Figure& figure) {
                                                      ":1 (more than 20:1); consider inertiaScale or a stouter shape");
     }
 
-    std::vector<int> tree(figure.bodies.size());
-    std::iota(tree.begin(), tree.end(), 0);
     for (const FigureConstraint& c : figure.constraints) {
         if (c.body1 < 0 || c.body2 < 0) continue;
         const FigureBody& a = figure.bodies[static_cast<std::size_t>(c.body1)];
         const FigureBody& b = figure.bodies[static_cast<std::size_t>(c.body2)];
-        tree[static_cast<std::size_t>(root(tree, c.body1))] = root(tree, c.body2);
         const std::string label = std::string(toString(c.type)) + " \"" + c.name + "\"";
         const Real ratio = std::max(a.mass, b.mass) / std::min(a.mass, b.mass);
         if (ratio > kMaxMassRatio)
@@ -90,13 +105,12 @@ void checkFigure(FigureBuildContext& context, const Figure& figure) {
                                                      ratioText(100 * overlap) + "% inside \"" + larger.name + "\"");
     }
 
-    std::vector<std::string> groups;
-    for (std::size_t i = 0; i < figure.bodies.size(); ++i)
-        if (root(tree, static_cast<int>(i)) == static_cast<int>(i)) groups.push_back(figure.bodies[i].name);
-    if (groups.size() > 1) {
+    const std::vector<std::vector<int>> trees = bodyTrees(figure);
+    if (trees.size() > 1) {
         std::string list;
-        for (const std::string& g : groups) list += (list.empty() ? "\"" : ", \"") + g + "\"";
-        context.diagnostics.warning(context.decl.where, "the bodies form " + std::to_string(groups.size()) +
+        for (const std::vector<int>& t : trees)
+            list += (list.empty() ? "\"" : ", \"") + figure.bodies[static_cast<std::size_t>(t.front())].name + "\"";
+        context.diagnostics.warning(context.decl.where, "the bodies form " + std::to_string(trees.size()) +
                                                             " separate trees (containing " + list +
                                                             "); constraints join them into one in most figures");
     }

@@ -214,3 +214,24 @@ TEST(Figure, RootBodyDrivesTheFirstChildOfOrigin) {
 
 }  // namespace
 }  // namespace af
+
+namespace af {
+namespace {
+
+TEST(Figure, HumanoidIsOneTreeAndAWristlessOneIsTwo) {
+    const Figure whole = buildHumanoid();
+    const auto trees = bodyTrees(whole);
+    ASSERT_EQ(trees.size(), 1u);
+    EXPECT_EQ(trees[0].size(), whole.bodies.size());
+
+    DeclAF d = test::humanoidDecl();
+    std::erase_if(d.constraints, [](const AFConstraint& c) { return c.name == "rwrist"; });
+    const FigureResult r = buildFigure(d, test::humanoidPose(), "humanoid.af");
+    ASSERT_TRUE(r.ok());
+    const auto split = bodyTrees(*r.figure);
+    ASSERT_EQ(split.size(), 2u);
+    EXPECT_EQ(split[1], std::vector<int>{r.figure->findBody("rhand")});
+}
+
+}  // namespace
+}  // namespace af

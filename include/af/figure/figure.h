@@ -107,6 +107,10 @@ struct FigureResult {
 FigureResult buildFigure(const DeclAF& decl, const Skeleton& afPose, const std::string& afFile,
                          const RigidPose& placement = {});
 
+// The groups of bodies joined by constraints (to the world or not), each in body order; a
+// well-formed figure is one tree. Groups are ordered by their first body.
+std::vector<std::vector<int>> bodyTrees(const Figure& figure);
+
 // The skeleton the bodies pose (§3.6), in world space: driven joints follow their bodies as
 // their `mod` says, every other joint follows its parent with its af_pose local transform, and
 // the root joint follows body 0. `bodyPoses` holds one world pose per body.
