@@ -1,6 +1,8 @@
 #include "af/geometry/math.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace af {
@@ -17,6 +19,16 @@ Mat3 rotationFromAngles(Real pitchDeg, Real yawDeg, Real rollDeg) {
     r.col(1) << sr * sp * cy - cr * sy, sr * sp * sy + cr * cy, sr * cp;
     r.col(2) << cr * sp * cy + sr * sy, cr * sp * sy - sr * cy, cr * cp;
     return r;
+}
+
+Vec3 anglesFromRotation(const Mat3& r) {
+    constexpr Real kRadToDeg = 180 / std::numbers::pi_v<Real>;
+    // Doom's axis A is Rᵀ, so A[i][j] = R(j, i).
+    const Real sp = std::clamp(r(2, 0), Real(-1), Real(1));
+    const Real cp = std::sqrt(r(0, 0) * r(0, 0) + r(1, 0) * r(1, 0));
+    if (cp > 8192 * std::numeric_limits<float>::epsilon())
+        return Vec3(-std::asin(sp), std::atan2(r(1, 0), r(0, 0)), std::atan2(r(2, 1), r(2, 2))) * kRadToDeg;
+    return Vec3(-std::asin(sp), -std::atan2(r(0, 1), r(1, 1)), 0) * kRadToDeg;
 }
 
 }  // namespace af

@@ -303,4 +303,16 @@ BodyShape recentred(const BodyShape& body, const Vec3& centre) {
     return moved;
 }
 
+const char* toString(ShapeKind kind) {
+    switch (kind) {
+    case ShapeKind::box: return "box";
+    case ShapeKind::octahedron: return "octahedron";
+    case ShapeKind::dodecahedron: return "dodecahedron";
+    case ShapeKind::cylinder: return "cylinder";
+    case ShapeKind::cone: return "cone";
+    case ShapeKind::bone: return "bone";
+    }
+    return "?";
+}
+
 }  // namespace af

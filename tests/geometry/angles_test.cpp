@@ -67,3 +67,30 @@ TEST(Angles, DoomAxisIsTheTransposeAndInvertsWithDoomsFormulas) {
 
 }  // namespace
 }  // namespace af
+
+namespace af {
+namespace {
+
+TEST(Angles, AnglesFromRotationInvertsRotationFromAngles) {
+    for (Real pitch : {-80.0, -30.0, 0.0, 45.0, 89.0})
+        for (Real yaw : {-170.0, -90.0, 0.0, 60.0, 179.0})
+            for (Real roll : {-120.0, 0.0, 33.0}) {
+                const Vec3 back = anglesFromRotation(rotationFromAngles(pitch, yaw, roll));
+                EXPECT_NEAR(back[0], pitch, 1e-9);
+                EXPECT_NEAR(back[1], yaw, 1e-9);
+                EXPECT_NEAR(back[2], roll, 1e-9);
+            }
+}
+
+TEST(Angles, StraightDownUsesDoomsGimbalLockRule) {
+    // Pitch 90 points the nose down; yaw and roll then turn about the same axis, and Doom puts
+    // all of it into yaw.
+    const Mat3 r = rotationFromAngles(90, 30, 20);
+    const Vec3 back = anglesFromRotation(r);
+    EXPECT_NEAR(back[0], 90, 1e-6);
+    EXPECT_NEAR(back[2], 0, 1e-12);
+    EXPECT_LE((rotationFromAngles(back[0], back[1], back[2]) - r).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+}  // namespace
+}  // namespace af

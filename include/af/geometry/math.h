@@ -24,4 +24,8 @@ using Mat3 = Eigen::Matrix<Real, 3, 3>;
 /// towards +Z. As a product of right-handed rotations: R = Rz(yaw) · Ry(pitch) · Rx(roll).
 Mat3 rotationFromAngles(Real pitchDeg, Real yawDeg, Real rollDeg);
 
+/// The inverse: (pitch, yaw, roll) in degrees of a rotation, as Doom's idMat3::ToAngles reads
+/// them (§0.2), including its choice near gimbal lock (yaw from the left axis, roll 0).
+Vec3 anglesFromRotation(const Mat3& rotation);
+
 }  // namespace af

@@ -19,6 +19,9 @@ namespace af {
 
 enum class ShapeKind { box, octahedron, dodecahedron, cylinder, cone, bone };
 
+/// The shape word as .af files write it.
+const char* toString(ShapeKind kind);
+
 /// Doom's trace-model limits, which cap the side count of cylinders and cones.
 inline constexpr int kMaxCylinderSides = 10;  ///< 3n edges ≤ 32
 inline constexpr int kMaxConeSides = 15;      ///< n + 1 faces ≤ 16
