@@ -1,15 +1,17 @@
 // af-check: parse .af files and report what is wrong with them, print them canonically, or
-// dump them as JSON.
+// dump them as JSON; or build a figure from its decl and skeleton and show its bodies,
+// constraints and mass.
 //
-// Exit status: 0 when every file loads, 1 when any file has an error, 2 for bad usage.
+// Exit status: 0 when every file (or the figure) loads, 1 when anything has an error, 2 for bad
+// usage. Warnings do not change the status.
 
 #include "af/text/af_parser.h"
 #include "af/text/af_writer.h"
 #include "af_json.h"
+#include "figure_report.h"
 
 #include <CLI/CLI.hpp>
 
-#include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -20,6 +22,9 @@ struct Options {
     std::vector<std::string> files;
     bool format = false;
     bool json = false;
+    std::string figure;
+    std::string entity;
+    std::vector<std::string> roots;
 };
 
 std::string summary(const af::AFParseResult& r) {
@@ -40,26 +45,7 @@ nlohmann::ordered_json record(const af::AFParseResult& r) {
     return {{"file", r.file.path}, {"ok", r.ok()}, {"decls", decls}, {"diagnostics", diagnostics}};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    Options options;
-    CLI::App app{"Checks Doom 3-style articulated figure (.af) files: every problem is reported as "
-                 "file:line:col. Exit status 0 when all files load, 1 when any has an error, 2 for bad usage."};
-    app.add_option("files", options.files, ".af files to check")->required();
-    auto* format = app.add_flag("--format", options.format,
-                                "print each file in the canonical layout of the Doom 3 AF editor");
-    app.add_flag("--json", options.json, "print one JSON record per file and line (the full parsed data)")
-        ->excludes(format);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        app.exit(e);
-        return 2;
-    }
-
+int checkFiles(const Options& options) {
     bool allOk = true;
     for (const std::string& path : options.files) {
         const af::AFParseResult result = af::loadAFFile(path);
@@ -76,4 +62,65 @@ int main(int argc, char** argv) {
         }
     }
     return allOk ? 0 : 1;
+}
+
+// A figure by decl name (its model from `settings { model }`) or an AF entity by entityDef name.
+int checkFigure(const Options& options) {
+    std::vector<std::filesystem::path> roots(options.roots.begin(), options.roots.end());
+    if (roots.empty()) roots.emplace_back(AF_DATA_DIR);
+    const af::ResourceIndex index(roots);
+    const af::AFResources resources =
+        options.entity.empty() ? index.resolveFigure(options.figure) : index.resolveAFEntity(options.entity);
+
+    // What the figure's own .af file said when it was read, then what finding and building it said.
+    std::vector<af::Diagnostic> diagnostics;
+    if (resources.figure)
+        for (const af::Diagnostic& d : index.diagnostics())
+            if (d.file == resources.figure->file) diagnostics.push_back(d);
+    diagnostics.insert(diagnostics.end(), resources.diagnostics.begin(), resources.diagnostics.end());
+    std::optional<af::FigureResult> built;
+    if (resources.ok()) {
+        built = af::buildFigure(resources.figure->decl, af::afPoseOf(resources), resources.figure->file);
+        diagnostics.insert(diagnostics.end(), built->diagnostics.begin(), built->diagnostics.end());
+    }
+    const af::Figure* figure = built && built->ok() ? &*built->figure : nullptr;
+    if (options.json) {
+        std::cout << af::figureReportJson(figure, resources, diagnostics).dump() << '\n';
+    } else {
+        for (const af::Diagnostic& d : diagnostics) std::cerr << d.format() << '\n';
+        if (figure) std::cout << af::figureReportText(*figure, resources);
+    }
+    return figure ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    CLI::App app{"Checks Doom 3-style articulated figure (.af) files: every problem is reported as "
+                 "file:line:col. Exit status 0 when all files load, 1 when any has an error, 2 for bad usage."};
+    app.add_option("files", options.files, ".af files to check");
+    auto* format = app.add_flag("--format", options.format,
+                                "print each file in the canonical layout of the Doom 3 AF editor");
+    app.add_flag("--json", options.json, "print JSON: one record per file and line, or one for the figure")
+        ->excludes(format);
+    auto* figure = app.add_option("--figure", options.figure,
+                                  "build the named figure on its model's af_pose skeleton and show it");
+    auto* entity = app.add_option("--entity", options.entity, "the same for an AF entityDef")->excludes(figure);
+    app.add_option("--root", options.roots,
+                   "a mod folder laid out like Doom's base/ (af/, def/, models/); repeat for more, "
+                   "later ones override earlier ones (default: the af data folder of this build)");
+    format->excludes(figure)->excludes(entity);
+    try {
+        app.parse(argc, argv);
+        const bool figureMode = !options.figure.empty() || !options.entity.empty();
+        if (figureMode == !options.files.empty())
+            throw CLI::ValidationError("give .af files, or --figure/--entity NAME, but not both");
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return 2;
+    }
+    return options.files.empty() ? checkFigure(options) : checkFiles(options);
 }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -124,6 +125,79 @@ TEST(AfCheck, SameMeaningGivesSameJson) {
     EXPECT_EQ(a["decls"], b["decls"]);
     EXPECT_EQ(a["decls"][0]["settings"]["friction"]["linear"], 0.02);
     EXPECT_EQ(a["decls"][0]["bodies"][0]["origin"]["kind"], "joint");
+}
+
+}  // namespace
+
+namespace {
+
+TEST(AfCheckFigure, HumanoidShowsItsMassBodiesAndOneTree) {
+    const ToolRun r = afCheck("--figure humanoid");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_NE(r.out.find("total mass 150 (totalMass 150)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("bodies (16)"), std::string::npos);
+    EXPECT_NE(r.out.find("  pelvis  box  624  "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("hinge \"lknee\"  lshin -> lthigh  anchor ( 0, 5.5, 19 )"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("trees (1)"), std::string::npos);
+}
+
+TEST(AfCheckFigure, EntityDefLeadsToTheSameFigure) {
+    const ToolRun byEntity = afCheck("--entity ragdoll_humanoid");
+    EXPECT_EQ(byEntity.status, 0) << byEntity.err;
+    EXPECT_EQ(byEntity.out, afCheck("--figure humanoid").out);
+}
+
+TEST(AfCheckFigure, JsonHasMassesAndNoDiagnostics) {
+    const ToolRun r = afCheck("--json --figure humanoid");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["ok"], true);
+    EXPECT_NEAR(j["totalMass"].get<double>(), 150.0, 1e-9);
+    EXPECT_EQ(j["bodies"].size(), 16u);
+    EXPECT_EQ(j["constraints"].size(), 15u);
+    EXPECT_EQ(j["trees"].size(), 1u);
+    EXPECT_TRUE(j["diagnostics"].empty());
+    double sum = 0;
+    for (const auto& b : j["bodies"]) sum += b["mass"].get<double>();
+    EXPECT_NEAR(sum, 150.0, 1e-9);
+}
+
+TEST(AfCheckFigure, UnknownFigureIsAnError) {
+    const ToolRun r = afCheck("--figure nosuchfigure");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("nosuchfigure"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
+TEST(AfCheckFigure, FilesAndFigureTogetherIsBadUsage) {
+    EXPECT_EQ(afCheck("--figure humanoid af/chain.af").status, 2);
+    EXPECT_EQ(afCheck("--figure humanoid --format").status, 2);
+}
+
+// A mod folder that overrides the humanoid with a deliberately broken copy: the figure still
+// builds, and each problem is a warning at its place in the copy.
+TEST(AfCheckFigure, BrokenCopyInAModFolderGivesWarnings) {
+    const std::string mod = testing::TempDir() + "af_check_mod_" + std::to_string(getpid());
+    std::filesystem::create_directories(mod + "/af");
+    std::string text = slurp(std::string(AF_SOURCE_DIR) + "/af/humanoid.af");
+    auto replaceOnce = [&](const std::string& from, const std::string& to) {
+        const std::size_t at = text.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        text.replace(at, from.size(), to);
+    };
+    replaceOnce("origin bonecenter( \"neck\", \"headtop\" )", "origin bonecenter( \"neck\", \"hedtop\" )");
+    replaceOnce("body1 \"lhand\"\n\tbody2 \"lloarm\"", "body1 \"lhand\"\n\tbody2 \"nowhere\"");
+    std::ofstream(mod + "/af/humanoid.af", std::ios::binary) << text;
+
+    const ToolRun r = afCheck("--figure humanoid --root . --root " + mod);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("humanoid.af:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("warning: joint \"hedtop\" is not in the skeleton"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("warning: ballAndSocketJoint \"lwrist\": body2 \"nowhere\" is not a body"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("warning: the bodies form 2 separate trees"), std::string::npos) << r.err;
+    std::filesystem::remove_all(mod);
 }
 
 }  // namespace
