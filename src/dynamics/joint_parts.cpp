@@ -1,0 +1,124 @@
+// Rows shared by several joint types.
+//
+// Point part (ball, universal, hinge, fixed). pA = xA + rA and pB = xB + rB are the two bodies'
+// copies of the anchor, rA = RA·anchorA, rB = RB·anchorB.
+//     C = pA − pB  (three rows, one per world axis e_i; e_i is constant, so the rows are exact)
+//     Cdot_i = e_i·(vA + ωA × rA − vB − ωB × rB)
+//     J_i = [ e_i │ rA × e_i │ −e_i │ e_i × rB ]        (using e·(ω × r) = ω·(r × e))
+//
+// Orientation part (fixed, slider). With `relative` A's spawn orientation in B's frame, the
+// error rotation E = qA ⊗ relative⁻¹ ⊗ qB⁻¹ is the identity when A keeps its spawn orientation
+// relative to B. Write E = (w, v). With q̇ = ½ ω ⊗ q (ω world) for A and d(qB⁻¹)/dt =
+// −½ qB⁻¹ ⊗ ωB, Ė = ½ ωA ⊗ E − ½ E ⊗ ωB, whose vector part is
+//     v̇ = ½ (w I − [v]×) ωA − ½ (w I + [v]×) ωB.
+//     C = 2 v (≈ the rotation vector for small errors), three rows along the world axes,
+//     J_i = [ 0 │ row i of (w I − [v]×) │ 0 │ −row i of (w I + [v]×) ]
+// Exact at any error; at E = I it is the familiar [0 │ I │ 0 │ −I]. E and −E are the same
+// rotation; w ≥ 0 is kept so the error is the short way round.
+//
+// Angular friction part: Cdot = (ωA − ωB)·d, J = [0 │ d │ 0 │ −d], boxed by ±f·|λ_prev|, no
+// position error.
+
+#include "joint_parts.h"
+
+namespace af::joint_detail {
+
+Side sideOf(int index, std::span<const RigidBody> bodies) {
+    Side s;
+    s.index = index;
+    if (index == kWorldBody) return s;
+    const RigidBody& body = bodies[static_cast<std::size_t>(index)];
+    s.position = body.position;
+    s.orientation = body.orientation;
+    s.rotation = body.rotation();
+    s.linearVelocity = body.linearVelocity;
+    s.angularVelocity = body.angularVelocity;
+    s.inverseMass = body.inverseMass;
+    s.inverseInertia = s.rotation * body.inverseInertia * s.rotation.transpose();
+    return s;
+}
+
+Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies) {
+    return {sideOf(joint.bodyA, bodies), sideOf(joint.bodyB, bodies)};
+}
+
+void addRow(const Pair& pair, const Jacobian& j, Real error, Real lo, Real hi, Real relativeCfm, ConstraintRows& out) {
+    ConstraintRow row;
+    row.bodyA = pair.a.index;
+    row.bodyB = pair.b.index;
+    row.linearA = j.linearA;
+    row.angularA = j.angularA;
+    if (pair.b.index != kWorldBody) {
+        row.linearB = j.linearB;
+        row.angularB = j.angularB;
+    }
+    row.error = error;
+    row.lo = lo;
+    row.hi = hi;
+    const Real diagonal = pair.a.inverseMass * row.linearA.squaredNorm() +
+                          row.angularA.dot(pair.a.inverseInertia * row.angularA) +
+                          pair.b.inverseMass * row.linearB.squaredNorm() +
+                          row.angularB.dot(pair.b.inverseInertia * row.angularB);
+    row.cfm = relativeCfm * diagonal;
+    out.add(row);
+}
+
+Vec3 perpendicular(const Vec3& v) {
+    // Doom's idVec3::OrthogonalBasis `left`: avoid the axis v is closest to, so the result is
+    // well scaled. Doom's |z| > 0.7 branch has the signs of its last two components flipped and
+    // is then not ⟂ v (unless v.x = 0); this is the orthogonal version of it.
+    if (std::fabs(v.z()) <= Real(0.7)) {
+        const Real s = std::sqrt(v.x() * v.x() + v.y() * v.y());
+        return Vec3(-v.y(), v.x(), 0) / s;
+    }
+    const Real s = std::sqrt(v.y() * v.y() + v.z() * v.z());
+    return Vec3(s, -v.x() * v.y() / s, -v.x() * v.z() / s);
+}
+
+Real wrapAngle(Real angle) {
+    constexpr Real pi = std::numbers::pi_v<Real>;
+    angle = std::remainder(angle, 2 * pi);  // into [−π, π]
+    return angle <= -pi ? angle + 2 * pi : angle;
+}
+
+void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Real relativeCfm, ConstraintRows& out) {
+    const Vec3 rA = pointA - pair.a.position;
+    const Vec3 rB = pointB - pair.b.position;
+    const Vec3 error = pointA - pointB;
+    for (int i = 0; i < 3; ++i) {
+        const Vec3 e = Vec3::Unit(i);
+        addRow(pair, {e, rA.cross(e), -e, e.cross(rB)}, error[i], -kInfinity, kInfinity, relativeCfm, out);
+    }
+}
+
+Quat errorRotation(const Pair& pair, const Quat& relative) {
+    Quat e = pair.a.orientation * relative.conjugate() * pair.b.orientation.conjugate();
+    if (e.w() < 0) e.coeffs() = -e.coeffs();
+    return e;
+}
+
+void writeOrientationRows(const Pair& pair, const Quat& relative, Real relativeCfm, ConstraintRows& out) {
+    const Quat e = errorRotation(pair, relative);
+    const Real w = e.w();
+    const Vec3 v = e.vec();
+    Mat3 skew;
+    skew << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    const Mat3 ja = w * Mat3::Identity() - skew;
+    const Mat3 jb = -(w * Mat3::Identity() + skew);
+    for (int i = 0; i < 3; ++i)
+        addRow(pair, {Vec3::Zero(), ja.row(i).transpose(), Vec3::Zero(), jb.row(i).transpose()}, 2 * v[i], -kInfinity,
+               kInfinity, relativeCfm, out);
+}
+
+Real rotationAngle(const Quat& q) { return 2 * std::atan2(q.vec().norm(), std::fabs(q.w())); }
+
+void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Real relativeCfm, ConstraintRows& out) {
+    addRow(pair, {Vec3::Zero(), axis, Vec3::Zero(), -axis}, 0, -bound, bound, relativeCfm, out);
+}
+
+Real frictionBound(const Joint& joint) {
+    if (joint.friction <= 0 || joint.lastImpulse <= 0) return 0;
+    return joint.friction * joint.lastImpulse;
+}
+
+}  // namespace af::joint_detail

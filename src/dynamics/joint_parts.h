@@ -1,0 +1,93 @@
+#pragma once
+// Parts shared by the joint files: a body as a joint sees it, appending a row with relative
+// softness, and the rows several joint types have in common (point, orientation, the cone and
+// pyramid limits on a shaft, angular friction). Each part is derived where it is defined.
+
+#include "af/dynamics/joints.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace af::joint_detail {
+
+// A body's state as a joint needs it; the world is an immovable body at the origin.
+struct Side {
+    int index = kWorldBody;
+    Vec3 position = Vec3::Zero();
+    Quat orientation = Quat::Identity();
+    Mat3 rotation = Mat3::Identity();
+    Vec3 linearVelocity = Vec3::Zero();
+    Vec3 angularVelocity = Vec3::Zero();
+    Real inverseMass = 0;
+    Mat3 inverseInertia = Mat3::Zero();  // world frame
+
+    Vec3 point(const Vec3& local) const { return position + rotation * local; }
+    Vec3 direction(const Vec3& local) const { return rotation * local; }
+    Vec3 velocityAt(const Vec3& worldPoint) const {
+        return linearVelocity + angularVelocity.cross(worldPoint - position);
+    }
+};
+
+Side sideOf(int index, std::span<const RigidBody> bodies);
+
+// The two bodies of a joint.
+struct Pair {
+    Side a, b;
+};
+Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies);
+
+// The Jacobian of one row: Cdot = linearA·vA + angularA·ωA + linearB·vB + angularB·ωB.
+struct Jacobian {
+    Vec3 linearA = Vec3::Zero();
+    Vec3 angularA = Vec3::Zero();
+    Vec3 linearB = Vec3::Zero();
+    Vec3 angularB = Vec3::Zero();
+};
+
+// Appends a row; B's blocks are dropped against the world. cfm = relativeCfm · J M⁻¹ Jᵀ.
+void addRow(const Pair& pair, const Jacobian& jacobian, Real error, Real lo, Real hi, Real relativeCfm,
+            ConstraintRows& out);
+
+// A unit vector ⟂ unit v (the hinge `left` of §3.8, made orthogonal).
+Vec3 perpendicular(const Vec3& v);
+// Angle wrapped into (−π, π].
+Real wrapAngle(Real angle);
+inline Real degrees(Real radians) { return radians * (180 / std::numbers::pi_v<Real>); }
+inline Real radians(Real degrees) { return degrees * (std::numbers::pi_v<Real> / 180); }
+
+// Point rows: C = pA − pB along the world axes, pA and pB world points carried by A and B.
+void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Real relativeCfm, ConstraintRows& out);
+
+// The error rotation qA ⊗ relative⁻¹ ⊗ qB⁻¹ (identity when A sits in B's frame as `relative`
+// says), with w ≥ 0.
+Quat errorRotation(const Pair& pair, const Quat& relative);
+// Orientation rows: C = 2·vec(errorRotation) along the world axes.
+void writeOrientationRows(const Pair& pair, const Quat& relative, Real relativeCfm, ConstraintRows& out);
+// The angle of the error rotation, radians.
+Real rotationAngle(const Quat& q);
+
+// Cone or pyramid limit rows on joint.limitShaft (A) against B; returns how many were written.
+int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out);
+// How far the shaft is past its cone or pyramid, radians (0 inside).
+Real shaftLimitViolation(const Joint& joint, const Pair& pair);
+
+// A friction row on the relative angular velocity (ωA − ωB)·axis, boxed by ±bound.
+void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Real relativeCfm, ConstraintRows& out);
+// The friction bound f·|λ_previous|, 0 when the joint has no friction this step.
+Real frictionBound(const Joint& joint);
+
+// Per type; each returns its counts, `first` is set by the caller.
+JointRowRange writeFixedRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
+JointRowRange writeSliderRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
+JointRowRange writeBallRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
+JointRowRange writeUniversalRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
+JointRowRange writeHingeRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
+JointRowRange writeSpringRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
+
+Real sliderOffAxisDistance(const Joint&, const Pair&);
+Real universalTwist(const Joint&, const Pair&);
+Real hingeAngleOf(const Joint&, const Pair&);
+Real hingeLimitViolation(const Joint&, const Pair&);
+Real springLengthOf(const Joint&, const Pair&);
+
+}  // namespace af::joint_detail

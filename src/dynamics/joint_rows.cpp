@@ -1,0 +1,73 @@
+// The joint types behind one entry point, and the measurements of joints for tests and summaries.
+
+#include "joint_parts.h"
+
+#include <algorithm>
+
+namespace af {
+
+using namespace joint_detail;
+
+JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies, const JointRowSettings& settings,
+                             ConstraintRows& out) {
+    const Pair pair = pairOf(joint, bodies);
+    const int first = static_cast<int>(out.size());
+    JointRowRange range;
+    switch (joint.type) {
+    case ConstraintType::Fixed: range = writeFixedRows(joint, pair, settings, out); break;
+    case ConstraintType::BallAndSocket: range = writeBallRows(joint, pair, settings, out); break;
+    case ConstraintType::Universal: range = writeUniversalRows(joint, pair, settings, out); break;
+    case ConstraintType::Hinge: range = writeHingeRows(joint, pair, settings, out); break;
+    case ConstraintType::Slider: range = writeSliderRows(joint, pair, settings, out); break;
+    case ConstraintType::Spring: range = writeSpringRows(joint, pair, settings, out); break;
+    }
+    range.first = first;
+    return range;
+}
+
+Real jointError(const Joint& joint, std::span<const RigidBody> bodies) {
+    const Pair pair = pairOf(joint, bodies);
+    switch (joint.type) {
+    case ConstraintType::Slider: return sliderOffAxisDistance(joint, pair);
+    case ConstraintType::Spring: {
+        const Real length = springLengthOf(joint, pair);
+        Real outside = std::max(Real(0), joint.spring.minLength - length);
+        if (joint.spring.maxLength > 0) outside = std::max(outside, length - joint.spring.maxLength);
+        return outside;
+    }
+    default: return (pair.a.point(joint.anchorA) - pair.b.point(joint.anchorB)).norm();
+    }
+}
+
+Real jointAngularError(const Joint& joint, std::span<const RigidBody> bodies) {
+    const Pair pair = pairOf(joint, bodies);
+    switch (joint.type) {
+    case ConstraintType::Fixed:
+    case ConstraintType::Slider: return rotationAngle(errorRotation(pair, joint.relative));
+    case ConstraintType::Hinge: {
+        const Vec3 hA = pair.a.direction(joint.axisA);
+        const Vec3 hB = pair.b.direction(joint.axisB);
+        return std::atan2(hA.cross(hB).norm(), hA.dot(hB));
+    }
+    case ConstraintType::Universal: return std::fabs(universalTwist(joint, pair));
+    default: return 0;
+    }
+}
+
+Real limitViolationDegrees(const Joint& joint, std::span<const RigidBody> bodies) {
+    const Pair pair = pairOf(joint, bodies);
+    switch (joint.type) {
+    case ConstraintType::BallAndSocket:
+    case ConstraintType::Universal: return degrees(shaftLimitViolation(joint, pair));
+    case ConstraintType::Hinge: return degrees(hingeLimitViolation(joint, pair));
+    default: return 0;
+    }
+}
+
+Real hingeAngle(const Joint& joint, std::span<const RigidBody> bodies) { return hingeAngleOf(joint, pairOf(joint, bodies)); }
+
+Real springLength(const Joint& joint, std::span<const RigidBody> bodies) {
+    return springLengthOf(joint, pairOf(joint, bodies));
+}
+
+}  // namespace af

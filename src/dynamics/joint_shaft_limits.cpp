@@ -1,0 +1,115 @@
+// Cone and pyramid limits on a shaft (ball and socket; universal on shaft 1), spec §3.8, §4.3.
+//
+// b = RA·limitShaft is the limited shaft (carried by A); the limit's axes are carried by B.
+// Every vector here is carried by one body, so its rate is ω × vector of that body, and for a
+// vector b on A and a vector k on B:  d(b·k)/dt = (ωA − ωB)·(b × k).
+//
+// Cone (axis k, half angle α): θ = angle(b, k) = atan2(|b × k|, b·k).
+//     C = α − θ ≥ 0
+//     Rotating b about n = unit(b × k) turns it towards k, so dθ/dt = −(ωA − ωB)·n and
+//     Cdot = (ωA − ωB)·n,   J = [0 │ n │ 0 │ −n]
+// Doom instead writes a linear row at a point 32 units up the cone surface, with a bias towards
+// the surface; the angular row is the same constraint without the arbitrary lever arm.
+//
+// Pyramid (basis e0, e1, e2 = axis; half angles α0, α1): for i = 0, 1 the shaft's projection onto
+// the plane (e_i, e2) makes the angle ψ_i = atan2(x, z), x = b·e_i, z = b·e2, with e2.
+//     C_i = α_i − |ψ_i| ≥ 0
+//     dψ/dt = (z ẋ − x ż)/(x² + z²) = (ωA − ωB)·g,  g = b × (z e_i − x e2) / (x² + z²)
+//     Cdot_i = −sign(ψ_i)·(ωA − ωB)·g,   J = [0 │ −sign(ψ_i) g │ 0 │ sign(ψ_i) g]
+// Doom checks both planes the same way but merges the violated ones into one row; two rows,
+// one per face, keep each face's constraint exact and let the solver handle the corner.
+//
+// A row is written once C < settings.limitMargin (before penetration), one-sided: lo = 0.
+
+#include "joint_parts.h"
+
+#include <algorithm>
+
+namespace af::joint_detail {
+namespace {
+
+constexpr Real kPi = std::numbers::pi_v<Real>;
+
+struct ConeState {
+    Real angle = 0;  // θ
+    Vec3 normal = Vec3::Zero();
+};
+
+ConeState coneState(const Vec3& shaft, const Vec3& axis) {
+    const Vec3 cross = shaft.cross(axis);
+    const Real sine = cross.norm();
+    ConeState s;
+    s.angle = std::atan2(sine, shaft.dot(axis));
+    // At θ = 0 or π the plane of turning is undefined; any normal of the axis will do.
+    s.normal = sine > Real(1e-12) ? Vec3(cross / sine) : perpendicular(axis);
+    return s;
+}
+
+struct FaceState {
+    Real angle = 0;  // ψ_i
+    Vec3 gradient = Vec3::Zero();  // g: dψ/dt = (ωA − ωB)·g
+    bool defined = false;          // false when b is ⟂ the face's plane
+};
+
+FaceState faceState(const Vec3& shaft, const Vec3& side, const Vec3& axis) {
+    const Real x = shaft.dot(side);
+    const Real z = shaft.dot(axis);
+    const Real r2 = x * x + z * z;
+    FaceState s;
+    if (r2 < Real(1e-18)) return s;
+    s.defined = true;
+    s.angle = std::atan2(x, z);
+    s.gradient = shaft.cross(z * side - x * axis) / r2;
+    return s;
+}
+
+void writeAngleLimitRow(const Pair& pair, Real error, const Vec3& gradient, Real relativeCfm, ConstraintRows& out) {
+    addRow(pair, {Vec3::Zero(), gradient, Vec3::Zero(), -gradient}, error, 0, kInfinity, relativeCfm, out);
+}
+
+}  // namespace
+
+int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
+    const Vec3 shaft = pair.a.direction(joint.limitShaft);
+    int written = 0;
+    if (joint.limit == LimitType::Cone) {
+        if (joint.cone.halfAngle >= kPi) return 0;
+        const ConeState s = coneState(shaft, pair.b.direction(joint.cone.axis));
+        const Real c = joint.cone.halfAngle - s.angle;
+        if (c < settings.limitMargin) {
+            writeAngleLimitRow(pair, c, s.normal, settings.limitCfm, out);
+            ++written;
+        }
+    } else if (joint.limit == LimitType::Pyramid) {
+        const Mat3 basis = pair.b.rotation * joint.pyramid.basis;
+        for (int i = 0; i < 2; ++i) {
+            if (joint.pyramid.halfAngles[i] >= kPi) continue;
+            const FaceState s = faceState(shaft, basis.col(i), basis.col(2));
+            if (!s.defined) continue;
+            const Real c = joint.pyramid.halfAngles[i] - std::fabs(s.angle);
+            if (c >= settings.limitMargin) continue;
+            const Real sign = s.angle < 0 ? -1 : 1;
+            writeAngleLimitRow(pair, c, -sign * s.gradient, settings.limitCfm, out);
+            ++written;
+        }
+    }
+    return written;
+}
+
+Real shaftLimitViolation(const Joint& joint, const Pair& pair) {
+    const Vec3 shaft = pair.a.direction(joint.limitShaft);
+    Real worst = 0;
+    if (joint.limit == LimitType::Cone) {
+        const ConeState s = coneState(shaft, pair.b.direction(joint.cone.axis));
+        worst = std::max(worst, s.angle - joint.cone.halfAngle);
+    } else if (joint.limit == LimitType::Pyramid) {
+        const Mat3 basis = pair.b.rotation * joint.pyramid.basis;
+        for (int i = 0; i < 2; ++i) {
+            const FaceState s = faceState(shaft, basis.col(i), basis.col(2));
+            if (s.defined) worst = std::max(worst, std::fabs(s.angle) - joint.pyramid.halfAngles[i]);
+        }
+    }
+    return worst;
+}
+
+}  // namespace af::joint_detail
