@@ -1,0 +1,41 @@
+#pragma once
+// Contact rows: a point where body A touches body B (or the world), with Coulomb friction.
+// The collision stage will produce Contacts; until then tests make them by hand.
+//
+// Rows (spec §4.3, §4.7): one normal row  [n │ rA×n] − [n │ rB×n],  lo = 0, hi = +∞, so it only
+// pushes; its target is the restitution velocity when the bodies approach faster than
+// restitutionThreshold, else 0; its error is the separation (negative when penetrating) plus a
+// small slop, which the position projection removes. Friction: two rows along tangents t1, t2
+// (or one along the body's frictionDirection projected into the contact plane), bounded by
+// ±friction·λ_normal through frictionSource: a Coulomb friction pyramid.
+
+#include "af/dynamics/constraint_row.h"
+#include "af/dynamics/rigid_body.h"
+
+#include <optional>
+#include <span>
+
+namespace af {
+
+struct Contact {
+    int bodyA = kWorldBody;
+    int bodyB = kWorldBody;
+    Vec3 point = Vec3::Zero();         // world, on the surface between the bodies
+    Vec3 normal = Vec3::UnitZ();       // world, unit, pointing from B towards A
+    Real depth = 0;                    // penetration along the normal (≥ 0 when touching)
+    Real friction = 0;                 // Coulomb coefficient μ
+    Real restitution = 0;              // Doom: 0.4 for every body
+    std::optional<Vec3> frictionDirection;  // world; one friction row along it when given
+};
+
+struct ContactSettings {
+    Real restitutionThreshold = 2;  // units/s of approach below which contacts do not bounce (Doom: 2)
+    Real slop = 0.05;               // units of penetration left alone, so resting contacts stay touching
+    Real cfm = 0;                   // softness of normal and friction rows
+};
+
+// Appends the rows of one contact; returns the index of its normal row.
+int writeContactRows(const Contact& contact, std::span<const RigidBody> bodies, const ContactSettings& settings,
+                     ConstraintRows& out);
+
+}  // namespace af

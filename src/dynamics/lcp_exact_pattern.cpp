@@ -1,0 +1,242 @@
+// Exact solver, pattern stage: given which rows are clamped (C) and which sit at a bound, solve
+// for x exactly, then check every processed row and release the ones the pattern got wrong.
+//
+// Untied solve: rows outside C keep their values (bounds, or held values), and
+//     A_CC x_C = b_C − A_C,rest x_rest
+// is one solve with the current factorisation.
+//
+// Tied solve (friction coupling): a friction row k at a bound is not at a constant but at
+// x_k = c_k·x_s with c_k = ±mu_k·sign(x_s), where s is its normal. When s is in C, substituting
+// gives
+//     (A_CC + Σ_s u_s e_sᵀ) x_C = r,   u_s = Σ_{k tied to s} c_k A_C,k,
+// a rank-m change of A_CC (m = normals with sliding friction rows). By Woodbury, with
+// y = A_CC⁻¹ r and Z = A_CC⁻¹ [u_s], the normals' values ξ solve the small m×m system
+// (I + Z_S) ξ = y_S, and then x_C = y − Z ξ. The factorisation is reused unchanged: the tied
+// pattern costs m extra solves and one tiny LU, not a non-symmetric refactorisation.
+
+#include "dynamics/lcp_internal.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace af {
+
+namespace {
+
+using Slot = lcp::Slot;
+
+// Relative size of an LU pivot of the capacitance system below which the tied system counts as
+// singular (friction so strong that the normals are not determined by the pattern).
+constexpr Real kLinkPivotRelative = 1e-13;
+
+bool atBound(Slot s) { return s == Slot::AtLower || s == Slot::AtUpper; }
+
+// Solves the k×k system K ξ = rhs in place (K row-major, stride k) by Gaussian elimination with
+// partial pivoting. Returns false when a pivot is negligible.
+bool luSolveSmall(Real* K, int k, Real* rhs, int* pivotRow) {
+    Real scale = 0;
+    for (int i = 0; i < k * k; ++i) {
+        scale = std::max(scale, std::abs(K[i]));
+    }
+    for (int c = 0; c < k; ++c) {
+        int best = c;
+        for (int r = c + 1; r < k; ++r) {
+            if (std::abs(K[r * k + c]) > std::abs(K[best * k + c])) {
+                best = r;
+            }
+        }
+        pivotRow[c] = best;
+        if (!(std::abs(K[best * k + c]) > kLinkPivotRelative * scale)) {
+            return false;
+        }
+        if (best != c) {
+            std::swap_ranges(K + best * k, K + best * k + k, K + c * k);
+            std::swap(rhs[best], rhs[c]);
+        }
+        const Real inv = 1 / K[c * k + c];
+        for (int r = c + 1; r < k; ++r) {
+            const Real f = K[r * k + c] * inv;
+            if (f != 0) {
+                for (int j = c + 1; j < k; ++j) {
+                    K[r * k + j] -= f * K[c * k + j];
+                }
+                rhs[r] -= f * rhs[c];
+            }
+        }
+    }
+    for (int c = k - 1; c >= 0; --c) {
+        Real v = rhs[c];
+        for (int j = c + 1; j < k; ++j) {
+            v -= K[c * k + j] * rhs[j];
+        }
+        rhs[c] = v / K[c * k + c];
+    }
+    return true;
+}
+
+}  // namespace
+
+int LcpExactSolver::Impl::markTies(int driven, Real drivenSign) {
+    int count = 0;
+    for (int k = nC; k < nP; ++k) {
+        tie[k] = 0;
+        if (!coupled(k) || !atBound(slot[k])) {
+            continue;
+        }
+        const int q = posOf[source[k]];
+        if (q < nC || q == driven) {
+            const Real v = x[q];
+            const Real sign = v > 0 ? Real(1) : v < 0 ? Real(-1) : (q == driven ? drivenSign : Real(1));
+            tie[k] = (slot[k] == Slot::AtLower ? Real(-1) : Real(1)) * mu[k] * sign;
+            count += tie[k] != 0 ? 1 : 0;
+        }
+    }
+    return count;
+}
+
+bool LcpExactSolver::Impl::correctForTies(Real* v) {
+    const std::size_t sn = static_cast<std::size_t>(n);
+    int               k = 0;
+    for (int p = nC; p < nP; ++p) {
+        const int q = tie[p] != 0 ? posOf[source[p]] : n;
+        if (q >= nC) {
+            continue;  // untied, or tied to the driven row (the caller's right-hand side has it)
+        }
+        if (linkColumn[q] < 0) {
+            linkColumn[q] = k;
+            linkSources[k] = q;
+            std::fill_n(linkZ.data() + k * sn, nC, Real(0));
+            ++k;
+        }
+        // u_q += c_p A_C,p (column p of A is row p).
+        lcp::axpy(linkZ.data() + linkColumn[q] * sn, tie[p], a.data() + p * sn, nC);
+    }
+    if (k == 0) {
+        return true;
+    }
+    for (int c = 0; c < k; ++c) {
+        factor.solve(linkZ.data() + c * sn);
+    }
+    Real* K = linkK.data();
+    Real* xi = scratch.data();
+    for (int r = 0; r < k; ++r) {
+        for (int c = 0; c < k; ++c) {
+            K[r * k + c] = (r == c ? Real(1) : Real(0)) + linkZ[c * sn + linkSources[r]];
+        }
+        xi[r] = v[linkSources[r]];
+    }
+    const bool ok = luSolveSmall(K, k, xi, linkPivot.data());
+    if (ok) {
+        for (int c = 0; c < k; ++c) {
+            lcp::axpy(v, -xi[c], linkZ.data() + c * sn, nC);
+        }
+    }
+    for (int c = 0; c < k; ++c) {
+        linkColumn[linkSources[c]] = -1;
+    }
+    return ok;
+}
+
+void LcpExactSolver::Impl::solvePattern(bool tieFriction) {
+    // Rows at a bound sit exactly on it; sources are never coupled, so uncoupled rows first.
+    for (int p = nC; p < nP; ++p) {
+        if (!coupled(p) && atBound(slot[p])) {
+            x[p] = slot[p] == Slot::AtLower ? lo[p] : hi[p];
+        }
+    }
+    int nTied = 0;
+    if (tieFriction) {
+        nTied = markTies(-1, 1);
+    } else {
+        std::fill(tie.begin() + nC, tie.begin() + nP, Real(0));
+    }
+    for (int p = nC; p < nP; ++p) {
+        if (!coupled(p) || !atBound(slot[p])) {
+            continue;
+        }
+        if (tie[p] != 0) {
+            x[p] = 0;  // kept out of the right-hand side; the correction accounts for it
+            continue;
+        }
+        if (tieFriction) {
+            const Real bound = couplingBound(p);
+            lo[p] = -bound;
+            hi[p] = bound;
+        }
+        x[p] = slot[p] == Slot::AtLower ? lo[p] : hi[p];
+    }
+
+    // x_C := A_CC⁻¹ (b_C − A_C,rest x_rest), using the symmetry of A to read rows.
+    const std::size_t sn = static_cast<std::size_t>(n);
+    for (int m = 0; m < nC; ++m) {
+        x[m] = b[m] - lcp::dot(a.data() + m * sn + nC, x.data() + nC, n - nC);
+    }
+    factor.solve(x.data());
+    if (nTied == 0) {
+        return;
+    }
+    if (!correctForTies(x.data())) {
+        // Leave the untied values; the check finds the friction rows off their bounds and the
+        // pass loop reports NotConverged if that never settles.
+        linkSingular = true;
+    }
+    for (int p = nC; p < nP; ++p) {
+        if (tie[p] != 0) {
+            const Real bound = couplingBound(p);
+            lo[p] = -bound;
+            hi[p] = bound;
+            x[p] = tie[p] * x[posOf[source[p]]];
+        }
+    }
+}
+
+int LcpExactSolver::Impl::checkAndRelease(bool tieFriction) {
+    if (tieFriction) {
+        for (int p = 0; p < nP; ++p) {
+            if (coupled(p) && (slot[p] == Slot::Clamped || atBound(slot[p]))) {
+                const Real bound = couplingBound(p);
+                lo[p] = -bound;
+                hi[p] = bound;
+            }
+        }
+    }
+    int               released = 0;
+    const std::size_t sn = static_cast<std::size_t>(n);
+
+    // Rows outside C, from the back, so that a release (a swap with the last processed row)
+    // only moves rows that were already checked.
+    for (int p = nP - 1; p >= nC; --p) {
+        const Slot s = slot[p];
+        if (s == Slot::Failed) {
+            continue;
+        }
+        const Real wp = lcp::dot(a.data() + p * sn, x.data(), n) - b[p];
+        w[p] = wp;
+        const bool onLower = std::isfinite(lo[p]) && std::abs(x[p] - lo[p]) <= tolX(lo[p]);
+        const bool onUpper = std::isfinite(hi[p]) && std::abs(x[p] - hi[p]) <= tolX(hi[p]);
+        bool       bad = false;
+        if (s == Slot::AtLower) {
+            bad = !onLower || (wp < -tolW && !onUpper);
+        } else if (s == Slot::AtUpper) {
+            bad = !onUpper || (wp > tolW && !onLower);
+        } else if (s == Slot::Held) {
+            bad = std::abs(wp) > tolW;
+        }
+        if (bad) {
+            release(p);
+            ++released;
+        }
+    }
+    // Clamped rows have w = 0 by construction; they only have to stay inside their box.
+    for (int p = nC - 1; p >= 0; --p) {
+        if (x[p] < lo[p] - tolX(lo[p]) || x[p] > hi[p] + tolX(hi[p])) {
+            release(p);
+            ++released;
+        } else {
+            w[p] = 0;
+        }
+    }
+    return released;
+}
+
+}  // namespace af

@@ -1,0 +1,155 @@
+#include "row_system.h"
+
+#include <algorithm>
+
+namespace af {
+
+namespace {
+
+Real dot6(const Vec3& l0, const Vec3& a0, const Vec3& l1, const Vec3& a1) { return l0.dot(l1) + a0.dot(a1); }
+
+}  // namespace
+
+void RowSystem::build(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
+    n_ = static_cast<int>(rows.size());
+    const std::size_t n = rows.size();
+    response_.resize(n);
+    a_.assign(n * n, 0);
+    b_.assign(n, 0);
+    lo_.resize(n);
+    hi_.resize(n);
+    mu_.resize(n);
+    cfm_.resize(n);
+    findex_.resize(n);
+    x_.resize(n);
+    states_.resize(n);
+
+    for (std::size_t i = 0; i < n; ++i) {
+        const ConstraintRow& r = rows[i];
+        RowResponse& m = response_[i];
+        m = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+        if (r.bodyA != kWorldBody) {
+            const RigidBody& a = bodies[static_cast<std::size_t>(r.bodyA)];
+            m.linearA = a.inverseMass * r.linearA;
+            m.angularA = a.inverseInertiaWorld() * r.angularA;
+        }
+        if (r.bodyB != kWorldBody) {
+            const RigidBody& b = bodies[static_cast<std::size_t>(r.bodyB)];
+            m.linearB = b.inverseMass * r.linearB;
+            m.angularB = b.inverseInertiaWorld() * r.angularB;
+        }
+        lo_[i] = r.lo;
+        hi_[i] = r.hi;
+        findex_[i] = r.frictionSource;
+        mu_[i] = r.frictionCoefficient;
+        cfm_[i] = r.cfm;
+    }
+    // A_ij = Σ over the bodies rows i and j share of J_i · M⁻¹ J_jᵀ. Symmetric: fill both halves.
+    for (std::size_t i = 0; i < n; ++i) {
+        const ConstraintRow& ri = rows[i];
+        for (std::size_t j = 0; j <= i; ++j) {
+            const ConstraintRow& rj = rows[j];
+            const RowResponse& mj = response_[j];
+            Real v = 0;
+            if (ri.bodyA != kWorldBody) {
+                if (ri.bodyA == rj.bodyA) v += dot6(ri.linearA, ri.angularA, mj.linearA, mj.angularA);
+                if (ri.bodyA == rj.bodyB) v += dot6(ri.linearA, ri.angularA, mj.linearB, mj.angularB);
+            }
+            if (ri.bodyB != kWorldBody) {
+                if (ri.bodyB == rj.bodyA) v += dot6(ri.linearB, ri.angularB, mj.linearA, mj.angularA);
+                if (ri.bodyB == rj.bodyB) v += dot6(ri.linearB, ri.angularB, mj.linearB, mj.angularB);
+            }
+            a_[i * n + j] = v;
+            a_[j * n + i] = v;
+        }
+    }
+}
+
+void RowSystem::setVelocityRhs(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const ConstraintRow& r = rows[i];
+        Real cdot = 0;
+        if (r.bodyA != kWorldBody) {
+            const RigidBody& a = bodies[static_cast<std::size_t>(r.bodyA)];
+            cdot += dot6(r.linearA, r.angularA, a.linearVelocity, a.angularVelocity);
+        }
+        if (r.bodyB != kWorldBody) {
+            const RigidBody& b = bodies[static_cast<std::size_t>(r.bodyB)];
+            cdot += dot6(r.linearB, r.angularB, b.linearVelocity, b.angularVelocity);
+        }
+        b_[i] = r.target - cdot;
+    }
+}
+
+void RowSystem::setPositionRhs(const ConstraintRows& rows) {
+    for (std::size_t i = 0; i < rows.size(); ++i) b_[i] = -rows[i].error;
+}
+
+LcpProblem RowSystem::problem() const {
+    const bool coupled = std::any_of(findex_.begin(), findex_.end(), [](int f) { return f >= 0; });
+    LcpProblem p;
+    p.size = n_;
+    p.a = a_;
+    p.b = b_;
+    p.lo = lo_;
+    p.hi = hi_;
+    if (coupled) {
+        p.findex = findex_;
+        p.mu = mu_;
+    }
+    p.cfm = cfm_;
+    return p;
+}
+
+void RowSystem::applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies) const {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Real lambda = x_[i];
+        if (lambda == 0) continue;
+        const ConstraintRow& r = rows[i];
+        const RowResponse& m = response_[i];
+        if (r.bodyA != kWorldBody) {
+            RigidBody& a = bodies[static_cast<std::size_t>(r.bodyA)];
+            a.linearVelocity += lambda * m.linearA;
+            a.angularVelocity += lambda * m.angularA;
+        }
+        if (r.bodyB != kWorldBody) {
+            RigidBody& b = bodies[static_cast<std::size_t>(r.bodyB)];
+            b.linearVelocity += lambda * m.linearB;
+            b.angularVelocity += lambda * m.angularB;
+        }
+    }
+}
+
+void RowSystem::applyDisplacements(const ConstraintRows& rows, std::span<RigidBody> bodies) {
+    // Accumulate first, then move each body once, so the order of rows does not matter.
+    std::vector<Vec3>& linear = linearShift_;
+    std::vector<Vec3>& angular = angularShift_;
+    linear.assign(bodies.size(), Vec3::Zero());
+    angular.assign(bodies.size(), Vec3::Zero());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Real lambda = x_[i];
+        if (lambda == 0) continue;
+        const ConstraintRow& r = rows[i];
+        const RowResponse& m = response_[i];
+        if (r.bodyA != kWorldBody) {
+            linear[static_cast<std::size_t>(r.bodyA)] += lambda * m.linearA;
+            angular[static_cast<std::size_t>(r.bodyA)] += lambda * m.angularA;
+        }
+        if (r.bodyB != kWorldBody) {
+            linear[static_cast<std::size_t>(r.bodyB)] += lambda * m.linearB;
+            angular[static_cast<std::size_t>(r.bodyB)] += lambda * m.angularB;
+        }
+    }
+    for (std::size_t k = 0; k < bodies.size(); ++k) displaceBody(bodies[k], linear[k], angular[k]);
+}
+
+void displaceBody(RigidBody& body, const Vec3& linear, const Vec3& angular) {
+    body.position += linear;
+    const Real angle = angular.norm();
+    if (angle > 0) {
+        body.orientation = Quat(Eigen::AngleAxis<Real>(angle, angular / angle)) * body.orientation;
+        body.orientation.normalize();
+    }
+}
+
+}  // namespace af

@@ -1,0 +1,55 @@
+#pragma once
+// The dense system of one island's constraint rows: A = J M⁻¹ Jᵀ + diag(cfm), and applying
+// impulses (or position displacements) Jᵀλ through M⁻¹. Workspace buffers keep their capacity
+// from step to step, so a step allocates nothing once the figure's row count has been seen.
+
+#include "af/dynamics/constraint_row.h"
+#include "af/dynamics/lcp.h"
+#include "af/dynamics/rigid_body.h"
+
+#include <span>
+#include <vector>
+
+namespace af {
+
+// M⁻¹ Jᵀ of one row, per side: the velocity change of each body per unit impulse.
+struct RowResponse {
+    Vec3 linearA, angularA, linearB, angularB;
+};
+
+// Moves a body by a small displacement: its centre by `linear`, its orientation turned by the
+// rotation vector `angular`.
+void displaceBody(RigidBody& body, const Vec3& linear, const Vec3& angular);
+
+class RowSystem {
+public:
+    // Fills A, lo, hi, findex, mu and cfm from `rows` at the bodies' current inertia; b is left
+    // to the caller (velocity or position level). Rows with include[i] false are left out.
+    void build(const ConstraintRows& rows, std::span<const RigidBody> bodies);
+
+    // b_i = target_i − Cdot_i(current velocities): the velocity problem.
+    void setVelocityRhs(const ConstraintRows& rows, std::span<const RigidBody> bodies);
+    // b_i = −error_i: the position problem (J Δq = −C).
+    void setPositionRhs(const ConstraintRows& rows);
+
+    LcpProblem problem() const;
+    std::span<Real> solution() { return x_; }
+    std::span<LcpRowState> states() { return states_; }
+
+    // v += M⁻¹ Jᵀ λ for every row's λ in solution().
+    void applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies) const;
+    // x += M⁻¹ Jᵀ λ (linear), orientation turned by I⁻¹ Jᵀ λ (angular).
+    void applyDisplacements(const ConstraintRows& rows, std::span<RigidBody> bodies);
+
+    const RowResponse& response(std::size_t row) const { return response_[row]; }
+
+private:
+    int n_ = 0;
+    std::vector<RowResponse> response_;
+    std::vector<Real> a_, b_, lo_, hi_, mu_, cfm_, x_;
+    std::vector<int> findex_;
+    std::vector<LcpRowState> states_;
+    std::vector<Vec3> linearShift_, angularShift_;
+};
+
+}  // namespace af

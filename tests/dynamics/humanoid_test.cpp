@@ -1,0 +1,48 @@
+// Our humanoid, hung from the world by its chest and shaken: joints hold and limits are kept.
+
+#include "../figure/figure_test_util.h"
+#include "world_test_util.h"
+
+#include <random>
+
+namespace af {
+namespace {
+
+Figure hungHumanoid() {
+    DeclAF decl = test::humanoidDecl();
+    AFConstraint hang;
+    hang.type = ConstraintType::Fixed;
+    hang.name = "hang";
+    hang.body1 = "chest";
+    hang.body2 = "world";
+    decl.constraints.push_back(hang);
+    const FigureResult r = buildFigure(decl, test::humanoidPose(), "humanoid.af");
+    EXPECT_TRUE(r.ok()) << r.formatDiagnostics();
+    return r.figure.value_or(Figure{});
+}
+
+void shake(World& world, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<Real> spin(-6, 6);
+    for (RigidBody& b : world.bodies()) b.angularVelocity = Vec3(spin(rng), spin(rng), spin(rng));
+}
+
+TEST(WorldHumanoid, HungByTheChestItSwingsTenSecondsWithTightJointsAndLimits) {
+    World world(hungHumanoid());
+    shake(world, 3);
+    Real worstJoint = 0, worstLimit = 0;
+    for (int i = 0; i < 600; ++i) {
+        world.step();
+        worstJoint = std::max(worstJoint, world.maxJointError());
+        worstLimit = std::max(worstLimit, world.maxLimitViolationDegrees());
+    }
+    std::printf("humanoid hung by the chest, 10 s: max joint error %.3g units, max limit violation %.3g deg\n",
+                worstJoint, worstLimit);
+    EXPECT_LT(worstJoint, 1e-4);
+    EXPECT_LT(worstLimit, 3.0);
+    EXPECT_LT(world.maxLimitViolationDegrees(), 1.0) << "at the end, when the figure hangs still";
+    EXPECT_EQ(world.solverFailures(), 0);
+}
+
+}  // namespace
+}  // namespace af

@@ -1,0 +1,159 @@
+// Physics of whole steps: pendulum period and energy, a hanging chain's joint error, momentum
+// of a free figure, determinism. Each test states its tolerance.
+
+#include "world_test_util.h"
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+namespace af {
+namespace {
+
+using test::horizontalChain;
+using test::pendulum;
+
+constexpr Real kPi = 3.14159265358979323846;
+
+// Swings the pendulum's body rigidly about the pivot by `degrees` about +X.
+void tilt(World& world, const Vec3& pivot, Real degrees) {
+    const Quat turn(Eigen::AngleAxis<Real>(degrees * kPi / 180, Vec3::UnitX()));
+    RigidBody& bob = world.bodies()[0];
+    bob.position = pivot + turn * (bob.position - pivot);
+    bob.orientation = turn * bob.orientation;
+}
+
+// Times of upward zero crossings of the bob's y coordinate, linearly interpolated.
+std::vector<Real> upwardCrossings(World& world, int steps) {
+    std::vector<Real> crossings;
+    Real previous = world.bodies()[0].position.y();
+    for (int i = 0; i < steps; ++i) {
+        const Real t0 = world.time();
+        world.step();
+        const Real y = world.bodies()[0].position.y();
+        if (previous < 0 && y >= 0) crossings.push_back(t0 + (world.time() - t0) * (-previous) / (y - previous));
+        previous = y;
+    }
+    return crossings;
+}
+
+TEST(WorldPendulum, PeriodMatchesSmallAngleTheory) {
+    const Real half = 2, length = 30;
+    World world(pendulum(half, length));
+    tilt(world, Vec3(0, 0, length), 2);
+    const RigidBody& bob = world.bodies()[0];
+    const Real m = bob.mass();
+    const Real inertiaAboutPivot = bob.inertia(0, 0) + m * length * length;
+    const Real g = -world.settings().gravity.z();
+    const Real expected = 2 * kPi * std::sqrt(inertiaAboutPivot / (m * g * length));
+
+    const std::vector<Real> crossings = upwardCrossings(world, static_cast<int>(12 * expected * 60));
+    ASSERT_GE(crossings.size(), 10u);
+    const Real measured = (crossings.back() - crossings.front()) / Real(crossings.size() - 1);
+    EXPECT_NEAR(measured / expected, 1.0, 0.005) << "measured " << measured << " s, expected " << expected << " s";
+}
+
+// Semi-implicit Euler's energy wobbles within each swing (by about ω·dt/2, 5 % here); what must
+// not happen is a drift. Compare the mean energy of the first and of the hundredth period.
+TEST(WorldPendulum, EnergyDriftsLessThanOnePercentOverAHundredPeriods) {
+    const Real half = 2, length = 30;
+    World world(pendulum(half, length));
+    const Real bottom = test::potentialEnergy(world);
+    tilt(world, Vec3(0, 0, length), 30);
+    const Real swing = test::potentialEnergy(world) + world.kineticEnergy() - bottom;  // of the oscillation
+    const RigidBody& bob = world.bodies()[0];
+    const Real period = 2 * kPi * std::sqrt((bob.inertia(0, 0) + bob.mass() * length * length) /
+                                            (bob.mass() * -world.settings().gravity.z() * length));
+    const int perPeriod = static_cast<int>(std::lround(period * 60));
+    auto meanOverOnePeriod = [&] {
+        Real sum = 0;
+        for (int i = 0; i < perPeriod; ++i) {
+            world.step();
+            sum += test::potentialEnergy(world) + world.kineticEnergy() - bottom;
+        }
+        return sum / perPeriod;
+    };
+    const Real first = meanOverOnePeriod();
+    for (int p = 0; p < 98; ++p) meanOverOnePeriod();
+    const Real last = meanOverOnePeriod();
+    EXPECT_LT(std::abs(last - first) / swing, 0.01) << "mean energy " << first << " -> " << last << " of " << swing;
+    EXPECT_LT(world.maxJointError(), 1e-9);
+}
+
+// A chain of 20 hanging links released 30° from the vertical: a hard, chaotic swing.
+Real runChain(SolverKind solver, Real seconds) {
+    WorldSettings settings;
+    settings.solver = solver;
+    World world(test::hangingChain(20, 300), settings);
+    test::swingAbout(world, Vec3(0, 0, 300), 30);
+    Real worst = 0;
+    for (int i = 0; i < static_cast<int>(seconds * 60); ++i) {
+        world.step();
+        worst = std::max(worst, world.maxJointError());
+    }
+    if (solver == SolverKind::Exact) {
+        EXPECT_EQ(world.solverFailures(), 0);
+    }
+    return worst;
+}
+
+TEST(WorldChain, TwentyLinksKeepTheirJointsWithinATenThousandthOfAUnit) {
+    const Real exact = runChain(SolverKind::Exact, 10);
+    EXPECT_LT(exact, 1e-4);
+    const Real pgs = runChain(SolverKind::Pgs, 10);
+    RecordProperty("max_joint_error_exact", std::to_string(exact));
+    RecordProperty("max_joint_error_pgs", std::to_string(pgs));
+    std::printf("hanging chain of 20, 10 s: max joint error exact %.3g, PGS %.3g units\n", exact, pgs);
+}
+
+TEST(WorldChain, TwoRunsAreBitIdentical) {
+    auto run = [] {
+        World world(horizontalChain(8, 100));
+        for (int i = 0; i < 120; ++i) world.step();
+        std::vector<Real> state;
+        for (const RigidBody& b : world.bodies()) {
+            state.insert(state.end(), b.position.data(), b.position.data() + 3);
+            state.insert(state.end(), b.orientation.coeffs().data(), b.orientation.coeffs().data() + 4);
+            state.insert(state.end(), b.linearVelocity.data(), b.linearVelocity.data() + 3);
+        }
+        return state;
+    };
+    const std::vector<Real> a = run(), b = run();
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)), 0);
+}
+
+// Joint forces are internal: with no gravity and no air friction a tumbling chain keeps its
+// momentum. The links are cubes, whose free rotation integrates exactly, so whatever changes
+// the angular momentum would be the joints' doing.
+TEST(WorldChain, InternalForcesConserveMomentum) {
+    WorldSettings settings;
+    settings.gravity.setZero();
+    World world(horizontalChain(6, 0, true, 5), settings);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<Real> speed(-20, 20), spin(-2, 2);
+    for (RigidBody& b : world.bodies()) {
+        b.linearVelocity = Vec3(speed(rng), speed(rng), speed(rng));
+        b.angularVelocity = Vec3(spin(rng), spin(rng), spin(rng));
+    }
+    auto momentum = [&] {
+        Vec3 p = Vec3::Zero(), l = Vec3::Zero();
+        for (const RigidBody& b : world.bodies()) {
+            p += b.linearMomentum();
+            l += b.angularMomentum();
+        }
+        return std::pair{p, l};
+    };
+    // The random start breaks every joint; the first steps bring the velocities in line, and
+    // their position corrections do move momentum. From then on the joints' impulses are internal.
+    for (int i = 0; i < 10; ++i) world.step();
+    const auto [p0, l0] = momentum();
+    for (int i = 0; i < 120; ++i) world.step();
+    const auto [p1, l1] = momentum();
+    EXPECT_LE((p1 - p0).norm(), 1e-9 * p0.norm()) << p0.transpose() << " -> " << p1.transpose();
+    EXPECT_LE((l1 - l0).norm(), 1e-6 * l0.norm()) << l0.transpose() << " -> " << l1.transpose();
+    EXPECT_LT(world.maxJointError(), 1e-6);
+}
+
+}  // namespace
+}  // namespace af
