@@ -101,46 +101,41 @@ LcpProblem RowSystem::problem() const {
     return p;
 }
 
-void RowSystem::applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies) const {
+void accumulateResponses(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                         std::span<const Real> lambda, std::vector<Vec3>& linear, std::vector<Vec3>& angular) {
+    std::fill(linear.begin(), linear.end(), Vec3::Zero());
+    std::fill(angular.begin(), angular.end(), Vec3::Zero());
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        const Real lambda = x_[i];
-        if (lambda == 0) continue;
+        if (lambda[i] == 0) continue;
         const ConstraintRow& r = rows[i];
-        const RowResponse& m = response_[i];
+        const RowResponse& m = responses[i];
         if (r.bodyA != kWorldBody) {
-            RigidBody& a = bodies[static_cast<std::size_t>(r.bodyA)];
-            a.linearVelocity += lambda * m.linearA;
-            a.angularVelocity += lambda * m.angularA;
+            linear[static_cast<std::size_t>(r.bodyA)] += lambda[i] * m.linearA;
+            angular[static_cast<std::size_t>(r.bodyA)] += lambda[i] * m.angularA;
         }
         if (r.bodyB != kWorldBody) {
-            RigidBody& b = bodies[static_cast<std::size_t>(r.bodyB)];
-            b.linearVelocity += lambda * m.linearB;
-            b.angularVelocity += lambda * m.angularB;
+            linear[static_cast<std::size_t>(r.bodyB)] += lambda[i] * m.linearB;
+            angular[static_cast<std::size_t>(r.bodyB)] += lambda[i] * m.angularB;
         }
     }
 }
 
-void RowSystem::applyDisplacements(const ConstraintRows& rows, std::span<RigidBody> bodies) {
-    // Accumulate first, then move each body once, so the order of rows does not matter.
-    std::vector<Vec3>& linear = linearShift_;
-    std::vector<Vec3>& angular = angularShift_;
-    linear.assign(bodies.size(), Vec3::Zero());
-    angular.assign(bodies.size(), Vec3::Zero());
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const Real lambda = x_[i];
-        if (lambda == 0) continue;
-        const ConstraintRow& r = rows[i];
-        const RowResponse& m = response_[i];
-        if (r.bodyA != kWorldBody) {
-            linear[static_cast<std::size_t>(r.bodyA)] += lambda * m.linearA;
-            angular[static_cast<std::size_t>(r.bodyA)] += lambda * m.angularA;
-        }
-        if (r.bodyB != kWorldBody) {
-            linear[static_cast<std::size_t>(r.bodyB)] += lambda * m.linearB;
-            angular[static_cast<std::size_t>(r.bodyB)] += lambda * m.angularB;
-        }
+void RowSystem::applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies) {
+    linearShift_.resize(bodies.size());
+    angularShift_.resize(bodies.size());
+    accumulateResponses(rows.all(), response_, x_, linearShift_, angularShift_);
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+        bodies[k].linearVelocity += linearShift_[k];
+        bodies[k].angularVelocity += angularShift_[k];
     }
-    for (std::size_t k = 0; k < bodies.size(); ++k) displaceBody(bodies[k], linear[k], angular[k]);
+}
+
+// Every body moves once, by the sum of its rows' moves, so the order of rows does not matter.
+void RowSystem::applyDisplacements(const ConstraintRows& rows, std::span<RigidBody> bodies) {
+    linearShift_.resize(bodies.size());
+    angularShift_.resize(bodies.size());
+    accumulateResponses(rows.all(), response_, x_, linearShift_, angularShift_);
+    for (std::size_t k = 0; k < bodies.size(); ++k) displaceBody(bodies[k], linearShift_[k], angularShift_[k]);
 }
 
 void displaceBody(RigidBody& body, const Vec3& linear, const Vec3& angular) {

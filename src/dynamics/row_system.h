@@ -17,6 +17,11 @@ struct RowResponse {
     Vec3 linearA, angularA, linearB, angularB;
 };
 
+// Adds λ_i times row i's response to the per-body sums (sized to the bodies, zeroed first): the
+// velocity change, or the move, that the impulses λ cause.
+void accumulateResponses(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                         std::span<const Real> lambda, std::vector<Vec3>& linear, std::vector<Vec3>& angular);
+
 // Moves a body by a small displacement: its centre by `linear`, its orientation turned by the
 // rotation vector `angular`.
 void displaceBody(RigidBody& body, const Vec3& linear, const Vec3& angular);
@@ -37,7 +42,7 @@ public:
     std::span<LcpRowState> states() { return states_; }
 
     // v += M⁻¹ Jᵀ λ for every row's λ in solution().
-    void applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies) const;
+    void applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies);
     // x += M⁻¹ Jᵀ λ (linear), orientation turned by I⁻¹ Jᵀ λ (angular).
     void applyDisplacements(const ConstraintRows& rows, std::span<RigidBody> bodies);
 

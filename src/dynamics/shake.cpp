@@ -59,20 +59,10 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
     lu_.compute(k_);
     lambda_ = lu_.solve(-drift_);
 
-    linear_.assign(bodies.size(), Vec3::Zero());
-    angular_.assign(bodies.size(), Vec3::Zero());
-    for (Eigen::Index j = 0; j < n; ++j) {
-        const ConstraintRow& s = start_[static_cast<std::size_t>(j)];
-        const RowResponse& m = responses_[static_cast<std::size_t>(j)];
-        if (s.bodyA != kWorldBody) {
-            linear_[static_cast<std::size_t>(s.bodyA)] += lambda_[j] * m.linearA;
-            angular_[static_cast<std::size_t>(s.bodyA)] += lambda_[j] * m.angularA;
-        }
-        if (s.bodyB != kWorldBody) {
-            linear_[static_cast<std::size_t>(s.bodyB)] += lambda_[j] * m.linearB;
-            angular_[static_cast<std::size_t>(s.bodyB)] += lambda_[j] * m.angularB;
-        }
-    }
+    linear_.resize(bodies.size());
+    angular_.resize(bodies.size());
+    accumulateResponses(start_, responses_, std::span<const Real>(lambda_.data(), static_cast<std::size_t>(n)), linear_,
+                        angular_);
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         displaceBody(bodies[b], linear_[b], angular_[b]);
         bodies[b].linearVelocity += linear_[b] / dt;
