@@ -133,6 +133,9 @@ void World::State::substep(Real dt) {
     if (solve(exact, layout == previousLayout) != LcpStatus::Solved) ++report.failures;
     const StepReport velocityReport = report;
     system.applyImpulses(rows, bodies);
+    // Doom caps the speeds after the constraint forces too (§4.9): a whipping chain end must not
+    // outrun what one step can follow.
+    for (RigidBody& b : bodies) clampVelocity(b, settings.integration);
     shake.capture(rows, ranges, system);
 
 

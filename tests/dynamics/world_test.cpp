@@ -106,6 +106,23 @@ TEST(WorldChain, TwentyLinksKeepTheirJointsWithinATenThousandthOfAUnit) {
     std::printf("hanging chain of 20, 10 s: max joint error exact %.3g, PGS %.3g units\n", exact, pgs);
 }
 
+// Released horizontally, a long chain whips its end round far faster than it fell: the joints
+// must hold and the motion must never have more energy than the fall released.
+TEST(WorldChain, ChainReleasedHorizontallyWhipsWithoutGainingEnergy) {
+    World world(test::hangingChain(20, 300));
+    test::swingAbout(world, Vec3(0, 0, 300), 90);
+    const Real start = test::potentialEnergy(world);
+    Real worstJoint = 0, worstGain = 0;
+    for (int i = 0; i < 600; ++i) {
+        world.step();
+        worstJoint = std::max(worstJoint, world.maxJointError());
+        worstGain = std::max(worstGain, test::potentialEnergy(world) + world.kineticEnergy() - start);
+    }
+    EXPECT_LT(worstJoint, 1e-4);
+    EXPECT_LE(worstGain, 1e-6 * std::abs(start)) << "energy gained " << worstGain;
+    EXPECT_EQ(world.solverFailures(), 0);
+}
+
 TEST(WorldChain, TwoRunsAreBitIdentical) {
     auto run = [] {
         World world(horizontalChain(8, 100));
