@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 
 namespace af::test {
@@ -90,6 +91,35 @@ inline void swingAbout(World& world, const Vec3& pivot, Real degrees) {
         b.position = pivot + turn * (b.position - pivot);
         b.orientation = turn * b.orientation;
     }
+}
+
+// Literal .af text for a number or a vector, 12 decimals. The parser reads 32-bit floats, as
+// Doom does: a test that measures against a direction should write one floats hold exactly
+// (small integers), not a rounded unit vector.
+inline std::string afNumber(Real x) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.12f", static_cast<double>(x));
+    return buffer;
+}
+
+inline std::string afVector(const Vec3& v) {
+    return "( " + afNumber(v.x()) + ", " + afNumber(v.y()) + ", " + afNumber(v.z()) + " )";
+}
+
+// A `body` block: an axis-aligned box of half extents `half` centred at `origin`, driving (and
+// containing) skeleton joint `joint`, with air friction (linear, angular) and no contact friction.
+inline std::string boxBodyText(const std::string& name, const std::string& joint, const Vec3& half, const Vec3& origin,
+                               Real density = 1, Real linearFriction = 0, Real angularFriction = 0) {
+    return "body \"" + name + "\" { joint \"" + joint + "\" model box( " + afVector(-half) + ", " + afVector(half) +
+           " ) origin " + afVector(origin) + " density " + afNumber(density) + " friction " + afNumber(linearFriction) +
+           ", " + afNumber(angularFriction) + ", 0 containedJoints \"" + joint + "\" }\n";
+}
+
+// A figure of the given body and constraint blocks on a names-only skeleton of `joints` (the
+// first must be "origin").
+inline Figure figureOfBlocks(const std::vector<std::string>& joints, const std::string& blocks) {
+    return figureFromText("articulatedFigure test {\nsettings { friction 0, 0, 0 }\n" + blocks + "}\n",
+                          namesOnlySkeleton(joints));
 }
 
 inline Real potentialEnergy(const World& world) {
