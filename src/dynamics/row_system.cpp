@@ -65,20 +65,21 @@ void RowSystem::build(const ConstraintRows& rows, std::span<const RigidBody> bod
     }
 }
 
-void RowSystem::setVelocityRhs(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const ConstraintRow& r = rows[i];
-        Real cdot = 0;
-        if (r.bodyA != kWorldBody) {
-            const RigidBody& a = bodies[static_cast<std::size_t>(r.bodyA)];
-            cdot += dot6(r.linearA, r.angularA, a.linearVelocity, a.angularVelocity);
-        }
-        if (r.bodyB != kWorldBody) {
-            const RigidBody& b = bodies[static_cast<std::size_t>(r.bodyB)];
-            cdot += dot6(r.linearB, r.angularB, b.linearVelocity, b.angularVelocity);
-        }
-        b_[i] = r.target - cdot;
+Real rowVelocity(const ConstraintRow& r, std::span<const RigidBody> bodies) {
+    Real cdot = 0;
+    if (r.bodyA != kWorldBody) {
+        const RigidBody& a = bodies[static_cast<std::size_t>(r.bodyA)];
+        cdot += dot6(r.linearA, r.angularA, a.linearVelocity, a.angularVelocity);
     }
+    if (r.bodyB != kWorldBody) {
+        const RigidBody& b = bodies[static_cast<std::size_t>(r.bodyB)];
+        cdot += dot6(r.linearB, r.angularB, b.linearVelocity, b.angularVelocity);
+    }
+    return cdot;
+}
+
+void RowSystem::setVelocityRhs(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
+    for (std::size_t i = 0; i < rows.size(); ++i) b_[i] = rows[i].target - rowVelocity(rows[i], bodies);
 }
 
 void RowSystem::setPositionRhs(const ConstraintRows& rows) {

@@ -22,6 +22,9 @@ struct RowResponse {
 void accumulateResponses(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                          std::span<const Real> lambda, std::vector<Vec3>& linear, std::vector<Vec3>& angular);
 
+// Cdot of a row at the bodies' current velocities.
+Real rowVelocity(const ConstraintRow& row, std::span<const RigidBody> bodies);
+
 // Moves a body by a small displacement: its centre by `linear`, its orientation turned by the
 // rotation vector `angular`.
 void displaceBody(RigidBody& body, const Vec3& linear, const Vec3& angular);

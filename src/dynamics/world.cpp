@@ -30,6 +30,7 @@ struct World::State {
     std::vector<Real> previousImpulses;
 
     void substep(Real dt);
+    void allowApproach(Real dt);
     void closeDrift(Real dt);
 
     void writeRows();
@@ -95,6 +96,20 @@ void World::State::writeRows() {
     layout.push_back(static_cast<int>(rows.size()));
 }
 
+// Limit and contact rows are written a little before they are reached (speculatively), so that
+// they hold from the first step they are needed. Until the gap C > 0 is closed such a row must
+// not push: it allows approaching by the gap within the step, Cdot ≥ −C/dt. A bounce
+// (restitution target > 0) stays only if the bodies close the gap within this step.
+void World::State::allowApproach(Real dt) {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        ConstraintRow& r = rows[i];
+        if (r.lo != 0 || r.frictionSource >= 0 || r.error <= 0) continue;
+        const bool impactThisStep = -rowVelocity(r, bodies) * dt >= r.error;
+        if (r.target > 0 && impactThisStep) continue;
+        r.target = std::min(r.target > 0 ? Real(0) : r.target, -r.error / dt);
+    }
+}
+
 // PGS running out of sweeps is its normal way of stopping, not a failure.
 LcpStatus World::State::solve(LcpExactSolver& exactSolver, bool warmStart) {
     const LcpProblem problem = system.problem();
@@ -128,6 +143,7 @@ void World::State::substep(Real dt) {
 
     writeRows();
     report.rows = static_cast<int>(rows.size());
+    allowApproach(dt);
     system.build(rows, bodies);
     system.setVelocityRhs(rows, bodies);
     if (solve(exact, layout == previousLayout) != LcpStatus::Solved) ++report.failures;
@@ -139,7 +155,7 @@ void World::State::substep(Real dt) {
     shake.capture(rows, ranges, system);
 
 
-    // Joint friction is bounded by the joint's own impulse of this step (Doom: of the last one).
+    // The joint's impulse of this step bounds its friction in the next step, as in Doom.
     const std::span<const Real> lambda = system.solution();
     for (std::size_t k = 0; k < joints.size(); ++k) {
         Real sum = 0;

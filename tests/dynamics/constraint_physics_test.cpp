@@ -163,15 +163,8 @@ TEST(ConstraintPhysicsLimit, HingeVLimitStopsAHardSwingAtBothSidesOfTheV) {
 // A limit the body never reaches must not act. A frictionless hinge pendulum under a symmetric
 // V of ±10° ("limit 0, 20, 0") swings with an amplitude of 9.7°, 0.3° short of the limit; it must
 // keep that amplitude (the integrator alone keeps it within 0.01°: 9.0° stays 9.01° over 10 s).
-//
-// DISABLED: engine bug. A limit row is written once the joint is within kLimitMarginRadians
-// (0.57°) of its limit, and it asks for Cdot ≥ 0 (target 0) although the limit is still C ahead;
-// so every swing that enters the margin is stopped dead there, as if it had hit the limit. Here
-// the amplitude drops from 9.7° to 9.44° (= 10° − 0.57°) within the first swings and the
-// pendulum loses 5 % of its energy; from 9.9° it drops to 9.44° as well (10 % of the energy).
-// With WorldSettings::rows.limitMargin = 0 the amplitude stays 9.71°. A speculative row,
-// Cdot ≥ −C/dt while C > 0, would keep the early engagement without acting at a distance.
-TEST(ConstraintPhysicsLimit, DISABLED_ASwingTurningJustShortOfALimitIsNotStoppedByIt) {
+
+TEST(ConstraintPhysicsLimit, ASwingTurningJustShortOfALimitIsNotStoppedByIt) {
     const Figure figure =
         figureOfBlocks({"origin"}, cubeBob(Vec3::Zero()) + "hinge \"knee\" { body1 \"bob\" body2 \"world\" anchor " +
                                        afVector(kAnchor) + " axis ( 1, 0, 0 ) friction 0 limit 0, 20, 0 }\n");
@@ -195,7 +188,7 @@ TEST(ConstraintPhysicsLimit, DISABLED_ASwingTurningJustShortOfALimitIsNotStopped
 // (Cdot ≥ 0) stops it there, and it rests 0.38°, 0.48° and 0.29° short of the limit, held by a
 // limit force that acts at a distance. With WorldSettings::rows.limitMargin = 0 it rests on the
 // limit (0.0000°).
-TEST(ConstraintPhysicsLimit, DISABLED_HingeReleasedNearItsLimitComesToRestOnIt) {
+TEST(ConstraintPhysicsLimit, HingeReleasedNearItsLimitComesToRestOnIt) {
     const Figure figure =
         figureOfBlocks({"origin"}, cubeBob(Vec3::Zero()) + "hinge \"knee\" { body1 \"bob\" body2 \"world\" anchor " +
                                        afVector(kAnchor) + " axis ( 1, 0, 0 ) friction 0 limit -35, 50, 0 }\n");
