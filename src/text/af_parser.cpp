@@ -2,11 +2,10 @@
 
 #include "af/text/strings.h"
 #include "af_parser_impl.h"
+#include "text_file.h"
 #include "af/text/contents.h"
 #include "af/text/number_format.h"
 
-#include <fstream>
-#include <sstream>
 
 namespace af {
 
@@ -18,15 +17,13 @@ AFParseResult parseAF(std::string_view text, std::string fileName) {
 }
 
 AFParseResult loadAFFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    const std::optional<std::string> text = readWholeFile(path);
+    if (!text) {
         AFParseResult result{{path, {}}, Diagnostics(path)};
         result.diagnostics.error({}, "cannot open the file for reading");
         return result;
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseAF(text.str(), path);
+    return parseAF(*text, path);
 }
 
 void AFParser::parseFile(AFFile& file) {

@@ -3,11 +3,10 @@
 
 #include "af/text/decl_def.h"
 #include "af/text/strings.h"
+#include "text_file.h"
 #include "token_reader.h"
 
 #include <array>
-#include <fstream>
-#include <sstream>
 
 namespace af {
 
@@ -283,15 +282,13 @@ DefParseResult parseDef(std::string_view text, std::string fileName) {
 }
 
 DefParseResult loadDefFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    const std::optional<std::string> text = readWholeFile(path);
+    if (!text) {
         DefParseResult result{{path, {}, {}, {}}, Diagnostics(path)};
         result.diagnostics.error({}, "cannot open the file for reading");
         return result;
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseDef(text.str(), path);
+    return parseDef(*text, path);
 }
 
 }  // namespace af

@@ -1,7 +1,5 @@
 #include "md5_common.h"
 
-#include <fstream>
-#include <sstream>
 
 namespace af::md5detail {
 
@@ -63,14 +61,6 @@ Token readWord(TokenReader& in, std::string_view what) {
 void expectEnd(TokenReader& in, std::string_view after) {
     const Token t = in.next();
     if (t.type != TokenType::End) in.fail(t, "end of file after " + std::string(after));
-}
-
-std::optional<std::string> readWholeFile(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) return std::nullopt;
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
 }
 
 }  // namespace af::md5detail

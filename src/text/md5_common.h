@@ -3,6 +3,7 @@
 // `( a b c )` form and value checks that stop the parse.
 
 #include "af/text/md5.h"
+#include "text_file.h"
 #include "token_reader.h"
 
 #include <optional>
@@ -35,7 +36,5 @@ Token readWord(TokenReader& in, std::string_view what);
 // After the last item: anything more is a count that does not match the data.
 void expectEnd(TokenReader& in, std::string_view after);
 
-// The whole file, or nothing if it cannot be read.
-std::optional<std::string> readWholeFile(const std::string& path);
 
 }  // namespace af::md5detail
