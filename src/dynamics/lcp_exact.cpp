@@ -1,21 +1,32 @@
-// Exact solver, the passes: solve the current pattern (friction tied to its normals), check it,
-// and pivot whatever the check released, until a pattern holds.
+// Exact solver, the passes: solve the current pattern exactly, check it, and pivot whatever the
+// check released, until a pattern holds.
 //
-// A cold start begins with the unbounded rows clamped and everything else unprocessed; a warm
-// start begins with the caller's guess. Either way each pass is
-//   1. tied solve of the pattern and check of every processed row (lcp_exact_pattern.cpp);
-//      done when nothing is released and nothing is left to pivot;
-//   2. untied re-solves until the remaining processed rows are consistent with the values the
-//      released rows now keep (each round only shrinks the processed set);
-//   3. Dantzig pivoting of the unprocessed rows with fixed bounds (lcp_exact_pivot.cpp).
-// Without coupling the second pass only confirms the first (or, after a warm start that held,
-// the first pass is the only one). With coupling, step 1 is what makes friction bounds agree
-// with the final normals rather than with the normals of the moment a friction row was pivoted.
+// A cold start begins with the unbounded rows clamped and everything else unprocessed
+// (uncoupled rows before coupled ones, so friction meets solved normals); a warm start begins
+// with the caller's guess factorised. Each pass then
+//   1. solves the pattern with friction rows tied to their normals and checks every processed
+//      row against the bounds of the result (lcp_exact_pattern.cpp); done when nothing is
+//      released and nothing is left to pivot;
+//   2. repeats that solve-and-check on the smaller processed set until it holds (each round only
+//      shrinks the set, so this ends);
+//   3. drives the unprocessed rows by Dantzig pivoting (lcp_exact_pivot.cpp), in reverse order
+//      on even passes: a pattern that failed to settle one way is approached from the other
+//      side, which breaks the rare cycles of coupled problems.
+// Without coupling, pass 2 merely confirms pass 1 (a warm start that holds needs one pass and
+// no pivots). A coupled problem that does not settle within maxCouplingPasses is reported as
+// NotConverged with the unsettled rows listed; the coupled problem can lack a solution when
+// friction is strong, and it need not be unique.
 
 #include "dynamics/lcp_internal.h"
 
 namespace af {
 
+namespace {
+
+// Block-pivoting rounds tried before rows are released to Dantzig pivoting.
+constexpr int kMaxFlipRounds = 8;
+
+}  // namespace
 
 LcpExactSolver::LcpExactSolver(const LcpExactSettings& settings) : impl_(std::make_unique<Impl>()) {
     impl_->settings = settings;
@@ -49,7 +60,23 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
     for (int pass = 1;; ++pass) {
         result.couplingPasses = pass;
         s.solvePattern(true);
-        int released = s.checkAndRelease(true);
+        if (pass == 1) {
+            // Single principal pivots on the worst row, while the number of wrong rows does not
+            // grow: a nearly right warm start is repaired in about one pivot per changed row.
+            int previous = s.n + 1;
+            for (int round = 0; round < kMaxFlipRounds; ++round) {
+                const int wrong = s.checkPattern(true, true);
+                if (wrong == 0) {
+                    break;
+                }
+                s.solvePattern(true);
+                if (wrong > previous) {
+                    break;
+                }
+                previous = wrong;
+            }
+        }
+        int released = s.checkPattern(true, false);
         if (released == 0 && s.nP == s.n) {
             break;
         }
@@ -58,10 +85,10 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
             break;
         }
         while (released > 0) {
-            s.solvePattern(false);
-            released = s.checkAndRelease(false);
+            s.solvePattern(true);
+            released = s.checkPattern(true, false);
         }
-        s.pivotUnprocessed(pass % 2 == 0);
+        s.pivotUnprocessed(pass);
         if (s.pivotLimitHit) {
             s.solvePattern(false);
             status = LcpStatus::PivotLimit;

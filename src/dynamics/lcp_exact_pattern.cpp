@@ -6,11 +6,11 @@
 // is one solve with the current factorisation.
 //
 // Tied solve (friction coupling): a friction row k at a bound is not at a constant but at
-// x_k = c_k·x_s with c_k = ±mu_k·sign(x_s), where s is its normal. When s is in C, substituting
+// x_k = c_k·x_q with c_k = ±mu_k·sign(x_q), where q is its normal. When q is in C, substituting
 // gives
-//     (A_CC + Σ_s u_s e_sᵀ) x_C = r,   u_s = Σ_{k tied to s} c_k A_C,k,
+//     (A_CC + Σ_q u_q e_qᵀ) x_C = r,   u_q = Σ_{k tied to q} c_k A_C,k,
 // a rank-m change of A_CC (m = normals with sliding friction rows). By Woodbury, with
-// y = A_CC⁻¹ r and Z = A_CC⁻¹ [u_s], the normals' values ξ solve the small m×m system
+// y = A_CC⁻¹ r and Z = A_CC⁻¹ [u_q], the normals' values ξ solve the small m×m system
 // (I + Z_S) ξ = y_S, and then x_C = y − Z ξ. The factorisation is reused unchanged: the tied
 // pattern costs m extra solves and one tiny LU, not a non-symmetric refactorisation.
 
@@ -175,11 +175,9 @@ void LcpExactSolver::Impl::solvePattern(bool tieFriction) {
     if (nTied == 0) {
         return;
     }
-    if (!correctForTies(x.data())) {
-        // Leave the untied values; the check finds the friction rows off their bounds and the
-        // pass loop reports NotConverged if that never settles.
-        linkSingular = true;
-    }
+    // When the tied system is singular the untied values stay; the check then finds friction
+    // rows off their bounds, and the pass loop reports NotConverged if that never settles.
+    correctForTies(x.data());
     for (int p = nC; p < nP; ++p) {
         if (tie[p] != 0) {
             const Real bound = couplingBound(p);
@@ -190,7 +188,7 @@ void LcpExactSolver::Impl::solvePattern(bool tieFriction) {
     }
 }
 
-int LcpExactSolver::Impl::checkAndRelease(bool tieFriction) {
+int LcpExactSolver::Impl::checkPattern(bool tieFriction, bool flip) {
     if (tieFriction) {
         for (int p = 0; p < nP; ++p) {
             if (coupled(p) && (slot[p] == Slot::Clamped || atBound(slot[p]))) {
@@ -200,12 +198,20 @@ int LcpExactSolver::Impl::checkAndRelease(bool tieFriction) {
             }
         }
     }
-    int               released = 0;
     const std::size_t sn = static_cast<std::size_t>(n);
+    pending.clear();
+    int  worst = -1;  // with `flip`: the row with the largest violation, measured in units of w
+    Real worstSize = 0;
+    auto note = [&](int p, Real size) {
+        pending.push_back(perm[p]);
+        if (size > worstSize) {
+            worstSize = size;
+            worst = perm[p];
+        }
+    };
 
-    // Rows outside C, from the back, so that a release (a swap with the last processed row)
-    // only moves rows that were already checked.
-    for (int p = nP - 1; p >= nC; --p) {
+    // Rows outside C: the sign of w must match the bound they sit on.
+    for (int p = nC; p < nP; ++p) {
         const Slot s = slot[p];
         if (s == Slot::Failed) {
             continue;
@@ -223,20 +229,39 @@ int LcpExactSolver::Impl::checkAndRelease(bool tieFriction) {
             bad = std::abs(wp) > tolW;
         }
         if (bad) {
-            release(p);
-            ++released;
+            note(p, atBound(s) && (s == Slot::AtLower ? onLower : onUpper) ? std::abs(wp) : kLcpInfinity);
         }
     }
     // Clamped rows have w = 0 by construction; they only have to stay inside their box.
-    for (int p = nC - 1; p >= 0; --p) {
-        if (x[p] < lo[p] - tolX(lo[p]) || x[p] > hi[p] + tolX(hi[p])) {
-            release(p);
-            ++released;
+    for (int p = 0; p < nC; ++p) {
+        const Real over = std::max(lo[p] - x[p], x[p] - hi[p]);
+        if (over > tolX(over > 0 && x[p] > hi[p] ? hi[p] : lo[p])) {
+            note(p, over * a[p * sn + p]);
         } else {
             w[p] = 0;
         }
     }
-    return released;
+
+    if (flip) {
+        // One block-pivoting step on the worst row only: flipping every wrong row at once
+        // overshoots badly when a row's free value is far outside its box (a sliding contact).
+        if (worst >= 0 && worstSize < kLcpInfinity) {
+            const int p = posOf[worst];
+            if (p < nC) {
+                const bool up = x[p] > hi[p];
+                x[p] = up ? hi[p] : lo[p];
+                removeFromClamped(p, up ? Slot::AtUpper : Slot::AtLower);
+            } else {
+                addToClamped(p, nullptr);
+            }
+            ++pivots;
+        }
+        return worst >= 0 && worstSize < kLcpInfinity ? static_cast<int>(pending.size()) : 0;
+    }
+    for (const int row : pending) {
+        release(posOf[row]);
+    }
+    return static_cast<int>(pending.size());
 }
 
 }  // namespace af

@@ -1,6 +1,6 @@
 // Exact solver, pivot stage: Dantzig's method for the boxed LCP (Baraff 1994 "Fast contact
-// force computation for nonpenetrating rigid bodies", §5–6; the same scheme as ODE's dLCP and
-// Doom's idLCP_Symmetric), driving one unprocessed row at a time to complementarity while every
+// force computation for nonpenetrating rigid bodies"; the scheme of ODE's dLCP and Doom's
+// idLCP_Symmetric), driving one unprocessed row at a time to complementarity while every
 // processed row stays complementary.
 //
 // Driving row i: w_i = (Ax − b)_i is moved towards zero by changing x_i in direction s (x_i
@@ -10,14 +10,26 @@
 // that keeps every processed row valid; the row that limits it changes sets (one append or one
 // removal of the LDLᵀ factor) and the drive goes on, until i itself is settled: w_i reaches 0
 // (i joins C) or x_i reaches a bound (i stays there).
+//
+// Friction coupling. ODE and Doom fix a friction row's box from its normal when the row is
+// reached and never look back, so their answer satisfies the bounds of normals that have
+// moved on since. Here the boxes move with the normals during the drive:
+//  * a friction row at a bound whose normal is clamped (or is row i) is tied to it,
+//    x_k = ±mu_k·|x_q|, and moves with it; the clamped rows absorb that motion through a rank-m
+//    Woodbury correction of the same factorisation (m = normals with tied rows);
+//  * clamped friction rows and row i meet boxes that move at mu·sign(x_q)·Δx_q per unit step;
+//  * a normal whose sign would flip ends a step (the rates change there).
+// Every processed row then stays complementary with the true coupled bounds, so a drive ends in
+// a valid state of the coupled problem. The tied system is not symmetric, and Δw_i/Δx_i may then
+// lose its sign: a friction row may find neither side valid and flip between C and its bound in
+// zero steps, or its box may close in on x_i. In those cases the drive goes on with boxes frozen
+// (plain Dantzig, which always progresses) and the pattern check after the pass (and the next
+// pass) repairs what that left stale.
 
 #include "dynamics/lcp_internal.h"
 
 #include <algorithm>
 #include <cmath>
-#ifdef AF_LCP_TRACE
-#include <cstdio>
-#endif
 
 namespace af {
 
@@ -38,7 +50,7 @@ enum class Event { None, ReachZero, ReachBound, ClampedHitsBound, BoundRowFrees,
 
 }  // namespace
 
-void LcpExactSolver::Impl::pivotUnprocessed(bool lastFirst) {
+void LcpExactSolver::Impl::pivotUnprocessed(int pass) {
     while (nP < n) {
         if (pivotLimitHit) {
             for (int p = nP; p < n; ++p) {
@@ -47,8 +59,13 @@ void LcpExactSolver::Impl::pivotUnprocessed(bool lastFirst) {
             nP = n;
             return;
         }
-        if (lastFirst) {
+        // Order of the drives: as loaded on the first pass, backwards on the second, then
+        // shuffled by a fixed rule; a pass that left rows wrong is not repeated the same way.
+        if (pass == 2) {
             swapPositions(nP, n - 1);
+        } else if (pass > 2) {
+            order = order * 6364136223846793005ull + 1442695040888963407ull;
+            swapPositions(nP, nP + static_cast<int>((order >> 33) % static_cast<std::uint64_t>(n - nP)));
         }
         if (!driveRow(nP)) {
             pivotLimitHit = true;
@@ -56,7 +73,7 @@ void LcpExactSolver::Impl::pivotUnprocessed(bool lastFirst) {
     }
 }
 
-Real LcpExactSolver::Impl::direction(int i, Real s, bool untied, bool& forwardKept) {
+Real LcpExactSolver::Impl::direction(int i, Real s, bool& untied, bool& forwardKept) {
     const std::size_t sn = static_cast<std::size_t>(n);
     const Real*       ai = a.data() + i * sn;
     int               nTied = 0;
@@ -64,6 +81,12 @@ Real LcpExactSolver::Impl::direction(int i, Real s, bool untied, bool& forwardKe
         std::fill(tie.begin() + nC, tie.begin() + nP, Real(0));
     } else {
         nTied = markTies(i, s);
+        for (int k = nC; k < nP; ++k) {
+            if (tie[k] != 0 && frozen[k]) {
+                tie[k] = 0;
+                --nTied;
+            }
+        }
     }
     std::fill(dx.begin() + nC, dx.begin() + nP, Real(0));
     dx[i] = s;
@@ -95,7 +118,8 @@ Real LcpExactSolver::Impl::direction(int i, Real s, bool untied, bool& forwardKe
     }
     factor.solve(dx.data());
     if (!correctForTies(dx.data())) {
-        linkSingular = true;
+        untied = true;  // the tied system is singular here: carry on as plain Dantzig
+        return direction(i, s, untied, forwardKept);
     }
     for (int k = nC; k < nP; ++k) {
         if (tie[k] != 0) {
@@ -122,12 +146,14 @@ bool LcpExactSolver::Impl::driveRow(int i) {
     Real wi = lcp::dot(ai, x.data(), n) - b[i];
     // Tied friction makes the drive's matrix non-symmetric, and then a friction row can find
     // neither side valid (free, it leaves its moving box; at its bound, its w turns wrong) and
-    // flip between them with zero steps. After a few zero steps the drive goes on untied:
-    // friction boxes frozen where they are, as ODE does, which is plain Dantzig on a positive
-    // definite matrix and so makes progress; the pattern check after the pass re-ties them.
+    // flip between them with zero steps. After a few zero steps that row's box is frozen where
+    // it is (as ODE freezes all of them) for the rest of the drive; if zero steps go on, the whole
+    // drive continues untied, plain Dantzig on a positive definite matrix, which progresses.
+    // The pattern check after the pass re-ties whatever was frozen.
     bool untied = false;
     bool frozenBox = false;  // also row i's own box, once it overtook x_i (see ReachBound)
     int  zeroSteps = 0;
+    std::fill_n(frozen.begin(), n, std::uint8_t(0));
 
     for (;;) {
         const bool atLo = x[i] <= lo[i];
@@ -162,11 +188,11 @@ bool LcpExactSolver::Impl::driveRow(int i) {
         bool       forwardKept = false;
         const Real dwi = direction(i, s, untied, forwardKept);
         const int  span = forwardKept ? nC : nP + 1;  // dx is zero on untied rows outside C
-        // Rows at a bound whose w can move: all but fixed uncoupled rows, and but friction rows
-        // whose normal stays put.
+        // Δw of the rows at a bound, except where any w is valid: fixed uncoupled rows, and
+        // friction rows shut at [0, 0] by a normal that stays put.
         for (int k = nC; k < nP; ++k) {
             bool moving = atBound(slot[k]) && lo[k] < hi[k];
-            if (coupled(k) && atBound(slot[k]) && !untied) {
+            if (coupled(k) && atBound(slot[k]) && !untied && !frozen[k]) {
                 const int q = posOf[source[k]];
                 moving = lo[k] < hi[k] || ((q < nC || q == i) && mu[k] > 0);
             }
@@ -178,7 +204,7 @@ bool LcpExactSolver::Impl::driveRow(int i) {
         // How fast a row's box moves: the normal q changes at dx[q], so the bound mu·|x_q| of a
         // friction row changes at mu·sign(x_q)·dx[q] (dx holds s at i).
         auto boundRate = [&](int p) {
-            if (!coupled(p) || (untied && (p != i || frozenBox))) {
+            if (!coupled(p) || frozen[p] || (untied && (p != i || frozenBox))) {
                 return Real(0);
             }
             const int  q = posOf[source[p]];
@@ -248,7 +274,7 @@ bool LcpExactSolver::Impl::driveRow(int i) {
         // look again (a contact normal, bounded below by 0, hits its bound first instead).
         for (int p = 0; p <= nP; ++p) {
             const bool inPlay = p == i || (!untied && (p < nC || (p < nP && tie[p] != 0)));
-            if (!inPlay || !coupled(p)) {
+            if (!inPlay || !coupled(p) || frozen[p]) {
                 continue;
             }
             const int  q = posOf[source[p]];
@@ -272,13 +298,17 @@ bool LcpExactSolver::Impl::driveRow(int i) {
         }
         t = std::max(t, Real(0));
         zeroSteps = t > 0 ? 0 : zeroSteps + 1;
+        // After too many zero steps: freeze the box of the friction row that keeps flipping
+        // (kept as an original row number: positions move in the step), else untie everything.
+        int freezeRow = -1;
         if (zeroSteps > kMaxZeroStepsTied) {
-            untied = true;
+            zeroSteps = 0;
+            if (which >= 0 && coupled(which) && !frozen[which]) {
+                freezeRow = perm[which];
+            } else {
+                untied = true;
+            }
         }
-#ifdef AF_LCP_TRACE
-        std::fprintf(stderr, "drive i=%d(r%d) x=%g wi=%g s=%g dwi=%g t=%g event=%d which=%d(r%d) nC=%d nP=%d\n", i,
-                     perm[i], x[i], wi, s, dwi, t, int(event), which, which >= 0 ? perm[which] : -1, nC, nP);
-#endif
 
         // Step. Tied rows and every moving box are recomputed from the normals afterwards, so
         // that they stay exactly on their bounds.
@@ -293,7 +323,9 @@ bool LcpExactSolver::Impl::driveRow(int i) {
         }
         if (!untied) {
             for (int p = 0; p < nC; ++p) {
-                refreshBound(p);
+                if (!frozen[p]) {
+                    refreshBound(p);
+                }
             }
         }
         if (!frozenBox) {
@@ -343,6 +375,9 @@ bool LcpExactSolver::Impl::driveRow(int i) {
                 ++pivots;  // no set change, but it counts against the cap like one
                 break;
             case Event::None: break;
+        }
+        if (freezeRow >= 0) {
+            frozen[posOf[freezeRow]] = 1;
         }
     }
 }

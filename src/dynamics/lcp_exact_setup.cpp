@@ -18,6 +18,9 @@ using Slot = lcp::Slot;
 // drift across zero this way is caught by the check after the pass.
 constexpr Real kDeltaWRelative = 1e-13;
 
+// Default pivot cap per row, Doom's idLCP limit of 32 iterations per variable.
+constexpr int kDefaultPivotsPerRow = 32;
+
 // Load order: the initial clamped set, then the guessed-at-bound rows, then the rows to pivot,
 // uncoupled before coupled so that friction bounds see solved normals (ODE's order).
 enum Group : int { kClampedGuess, kBoundGuess, kToPivot, kCoupledToPivot, kGroups };
@@ -42,9 +45,11 @@ void LcpExactSolver::Impl::reserve(int size) {
     }
     linkColumn.assign(n1, -1);
     slot.resize(n1);
+    frozen.assign(n1, 0);
     linkZ.resize(n2);
     linkK.resize(n2);
     failed.reserve(n1);
+    pending.reserve(n1);
     factor.reserve(size);
     capacity = size;
 }
@@ -132,9 +137,9 @@ void LcpExactSolver::Impl::load(const LcpProblem& problem, std::span<const LcpRo
     minPivotRel = settings.pivotTolerance;
     deltaW = kDeltaWRelative * std::max(aMax, std::numeric_limits<Real>::min());
     pivots = 0;
-    maxPivots = std::max(1, settings.maxPivotsPerRow) * std::max(1, n);
+    maxPivots = settings.maxPivots > 0 ? settings.maxPivots : kDefaultPivotsPerRow * n;
     pivotLimitHit = false;
-    linkSingular = false;
+    order = 0;
     failed.clear();
 
     factor.reset(n);
@@ -181,6 +186,7 @@ void LcpExactSolver::Impl::swapPositions(int p, int q) {
     std::swap(mu[p], mu[q]);
     std::swap(source[p], source[q]);
     std::swap(slot[p], slot[q]);
+    std::swap(frozen[p], frozen[q]);
     std::swap(perm[p], perm[q]);
     posOf[perm[p]] = p;
     posOf[perm[q]] = q;
@@ -206,6 +212,7 @@ void LcpExactSolver::Impl::removeFromClamped(int p, Slot to) {
         rot(mu);
         rot(source);
         rot(slot);
+        rot(frozen);
         rot(perm);
         for (int q = p; q < nC; ++q) {
             posOf[perm[q]] = q;

@@ -75,8 +75,10 @@ bool Ldlt::appendForwardSolved(const Real* y, Real diag, Real minPivot) {
 }
 
 bool Ldlt::append(const Real* a, Real diag, Real minPivot, Real* scratch) {
-    std::memcpy(scratch, a, sizeof(Real) * static_cast<std::size_t>(size_));
-    forward(scratch);
+    if (size_ > 0) {  // an empty row may come with a null pointer
+        std::memcpy(scratch, a, sizeof(Real) * static_cast<std::size_t>(size_));
+        forward(scratch);
+    }
     return appendForwardSolved(scratch, diag, minPivot);
 }
 

@@ -95,6 +95,7 @@ struct LcpExactSolver::Impl {
     std::vector<int>     posOf;   // original row → position
     std::vector<int>     source;  // position → original row of the bound source, or −1
     std::vector<Slot>    slot;
+    std::vector<std::uint8_t> frozen;  // position → box frozen for the current drive
     lcp::Ldlt            factor;  // of a[C][C]
     int                  nC = 0;
     int                  nP = 0;
@@ -108,16 +109,17 @@ struct LcpExactSolver::Impl {
     std::vector<Real> linkK;               // capacity²: the small capacitance system
     std::vector<int>  linkPivot;
     std::vector<int>  failed;              // original rows, reported in LcpResult
+    std::vector<int>  pending;             // original rows found wrong by checkPattern
 
     // Per-solve numbers.
     int  pivots = 0;
     int  maxPivots = 0;
     bool pivotLimitHit = false;
-    bool linkSingular = false;
     Real tolW = 0;       // |w| at or below this is zero
     Real tolRel = 0;     // relative tolerance for x against bounds
     Real minPivotRel = 0;
     Real deltaW = 0;     // |Δw| per unit step below this is rounding noise
+    std::uint64_t order = 0;  // state of the drive-order shuffle (reset per solve: deterministic)
 
     // lcp_exact_setup.cpp
     void reserve(int n);
@@ -136,7 +138,12 @@ struct LcpExactSolver::Impl {
 
     // lcp_exact_pattern.cpp
     void solvePattern(bool tieFriction);
-    int  checkAndRelease(bool tieFriction);
+    // Checks every processed row against the current x and returns how many are wrong. Those
+    // are released (made unprocessed, to be pivoted again); or, with `flip`, only the worst one
+    // changes sides (a clamped row out of its box goes to that bound, a bound row with the wrong
+    // w into C: a single principal pivot, cheap when a warm start is nearly right), and 0 is
+    // returned when no row can be flipped that way.
+    int  checkPattern(bool tieFriction, bool flip);
     // Friction rows at a bound whose normal q is clamped (or is row `driven`) are tied to it:
     // x_k = c_k·x_q with c_k = ±mu_k·sign(x_q) (drivenSign stands for the sign of a driven
     // normal at 0). Fills tie[nC, nP); returns how many rows are tied.
@@ -146,11 +153,11 @@ struct LcpExactSolver::Impl {
     bool correctForTies(Real* v);
 
     // lcp_exact_pivot.cpp
-    void pivotUnprocessed(bool lastFirst);  // lastFirst: drive the rows in reverse order
+    void pivotUnprocessed(int pass);  // the pass number picks the order of the drives
 
 private:
     bool driveRow(int i);  // false when the pivot cap stopped it
-    Real direction(int i, Real s, bool untied, bool& forwardKept);  // fills dx; Δw_i per unit step
+    Real direction(int i, Real s, bool& ioUntied, bool& outForwardKept);  // fills dx; returns Δw_i
 };
 
 }  // namespace af

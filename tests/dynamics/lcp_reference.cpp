@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace af::test {
 
 namespace {
 
-constexpr int kMaxRows = 8;
+constexpr int kMaxRows = 10;
 using SmallMat = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
 using SmallVec = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
 
@@ -64,6 +65,9 @@ Violations measure(const DenseLcp& p, const std::vector<Real>& x, Real extraCfm)
 BruteForceResult bruteForce(const DenseLcp& p, Real tol) {
     BruteForceResult result;
     const int        n = p.n;
+    if (n > kMaxRows) {
+        throw std::invalid_argument("bruteForce: at most 10 rows");
+    }
     std::vector<int> options(n);
     for (int i = 0; i < n; ++i) {
         const bool coupled = p.isCoupled(i);

@@ -16,7 +16,7 @@ struct BruteForceResult {
 /// Tries every pattern (each row free, at its lower bound or at its upper bound; for a coupled
 /// row "at a bound" means x_i = ∓mu_i·x_j, assuming x_j ≥ 0 as for a contact normal), solves the
 /// linear system the pattern defines, and keeps the solutions that satisfy all bounds and
-/// complementarity conditions within `tol`. Intended for n ≤ 8.
+/// complementarity conditions within `tol`. At most 10 rows (3¹⁰ patterns).
 BruteForceResult bruteForce(const DenseLcp& problem, Real tol = 1e-9);
 
 struct Violations {

@@ -23,8 +23,10 @@
 // Friction coupling (ODE's findex, Doom's boxIndex): a row i with findex_i = j ≥ 0 ignores lo_i
 // and hi_i and is bounded by the current solution of row j:
 //     lo_i = −mu_i·|x_j|,   hi_i = +mu_i·|x_j|.
-// Row j (the contact normal) must not be coupled itself. The coupled problem is no longer a
-// minimisation; a solution exists in the usual friction settings but need not be unique.
+// Row j (the contact normal) must not be coupled itself. Doom scales its own lo_i and hi_i by
+// |x_j| instead; with Doom's lo_i = −mu, hi_i = mu the two agree. The coupled problem is no
+// longer a minimisation; a solution exists in the usual friction settings but need not be
+// unique.
 //
 // CFM: rows that are redundant (two equal joint rows) or nearly so make A singular. A small
 // positive constraint-force-mixing term on the diagonal (per row in the problem, and/or one value
@@ -99,9 +101,10 @@ struct LcpExactSettings {
     /// A new pivot d of the factorisation with d ≤ pivotTolerance·A_ii means the row depends on
     /// the rows already factorised. With CFM > 0 this does not happen.
     Real pivotTolerance = 1e-12;
-    /// Pivot cap: at most maxPivotsPerRow·n changes of the factorised set per solve (Doom: 32).
-    int maxPivotsPerRow = 32;
-    /// Cap on the rounds that re-solve with the friction bounds of the last round (see below).
+    /// Pivot cap: at most this many changes of the factorised set per solve; 0 means 32·n
+    /// (Doom's 32 iterations per row). Reaching it ends the solve with status PivotLimit.
+    int maxPivots = 0;
+    /// Cap on the solve-check-pivot passes that settle friction coupling (see below).
     int maxCouplingPasses = 16;
     /// Compute LcpResult::residual against the original problem (one extra n×n product).
     bool computeResidual = true;
@@ -113,12 +116,16 @@ struct LcpExactSettings {
 /// * Unbounded rows are factorised first; the bounded rows are then driven one at a time to
 ///   complementarity, each pivot adding or removing one row of the factorisation in O(n²)
 ///   (never a refactorisation).
-/// * Friction coupling: coupled rows are processed after all others, with their bounds taken
-///   from the normal rows' values at that moment (ODE's order). Then the whole active pattern is
-///   re-solved exactly, with every friction row at its bound tied to its normal (a rank-k
-///   correction to the factorisation, k = sliding contacts), and checked; rows that are now
-///   wrong are released and pivoted again, for at most maxCouplingPasses rounds. The answer
-///   therefore satisfies the coupled bounds of its own x, not of an intermediate one.
+/// * Friction coupling: coupled rows are processed after the others (ODE's order), but unlike
+///   ODE and Doom their boxes are not frozen at the normals of that moment: while a row is
+///   driven, friction rows at a bound stay tied to their normals (x_k = ±mu_k·|x_j|, a rank-k
+///   Woodbury correction of the same factorisation, k = sliding contacts) and free friction rows
+///   meet boxes that move with the normals. Each pass ends with an exact solve of the whole
+///   pattern with those ties and a check of every row against the bounds of the final x; rows
+///   that fail are pivoted again, for at most maxCouplingPasses passes. The answer therefore
+///   satisfies the coupled bounds of its own x. The coupled problem need not have a unique
+///   solution, or any when friction is very strong; a problem that does not settle is reported
+///   as NotConverged (on random dense test problems with mu ≤ 1.2, about 1 in 10⁴).
 /// * Warm start: pass the row states of a previous solve in ioStates; the solver factorises that
 ///   pattern directly and only pivots the rows the guess got wrong. Solving the same problem
 ///   again from its own states takes zero pivots.
