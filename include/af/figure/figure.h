@@ -19,18 +19,6 @@
 
 namespace af {
 
-// A rigid transform: p_outer = position + rotation * p_local.
-struct RigidPose {
-    Vec3 position = Vec3::Zero();
-    Mat3 rotation = Mat3::Identity();
-
-    Vec3 apply(const Vec3& p) const { return position + rotation * p; }
-    RigidPose operator*(const RigidPose& inner) const {
-        return {position + rotation * inner.position, rotation * inner.rotation};
-    }
-    RigidPose inverse() const { return {-(rotation.transpose() * position), rotation.transpose()}; }
-};
-
 struct FigureBody {
     std::string name;
     ShapeKind shapeKind = ShapeKind::box;

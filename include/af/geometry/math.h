@@ -17,6 +17,18 @@ namespace af {
 using Vec3 = Eigen::Matrix<Real, 3, 1>;
 using Mat3 = Eigen::Matrix<Real, 3, 3>;
 
+// A rigid transform: p_outer = position + rotation * p_local.
+struct RigidPose {
+    Vec3 position = Vec3::Zero();
+    Mat3 rotation = Mat3::Identity();
+
+    Vec3 apply(const Vec3& p) const { return position + rotation * p; }
+    RigidPose operator*(const RigidPose& inner) const {
+        return {position + rotation * inner.position, rotation * inner.rotation};
+    }
+    RigidPose inverse() const { return {-(rotation.transpose() * position), rotation.transpose()}; }
+};
+
 /// Rotation R (body-local → world, columns = local axes) of Doom's idAngles(pitch, yaw, roll).
 /// Angles in degrees. Equals the transpose of Doom's `idAngles::ToMat3()`: column 0 is forward
 /// (cp·cy, cp·sy, −sp), column 1 is left, column 2 is up. Positive pitch points the nose down
