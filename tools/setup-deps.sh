@@ -8,7 +8,7 @@ packages=(
     libeigen3-dev libccd-dev
     googletest libgtest-dev libgmock-dev libbenchmark-dev
     libcli11-dev nlohmann-json3-dev
-    libcairo2-dev
+    libcairo2-dev libfontconfig-dev
 )
 
 missing=()
