@@ -1,0 +1,86 @@
+// The canonical `.map` writer: Doom 3's editor layout (doom3-af-spec.md §5.6), numbers in the
+// house format of §1.10.
+
+#include "af/text/map_file.h"
+#include "af/text/number_format.h"
+
+namespace af {
+
+namespace {
+
+class Writer {
+public:
+    std::string take() { return std::move(out_); }
+
+    Writer& raw(std::string_view s) { return out_ += s, *this; }
+    Writer& num(Real v) { return raw(formatDeclFloat(v)); }
+    Writer& quoted(std::string_view s) { return raw("\"").raw(s).raw("\""); }
+
+    // `( v v v )` from any range of numbers.
+    template <class Numbers>
+    Writer& numbers(const Numbers& values) {
+        raw("(");
+        for (Real v : values) raw(" ").num(v);
+        return raw(" )");
+    }
+
+    void pairs(const MapKeyValues& keys, std::string_view indent) {
+        for (const MapKeyValue& kv : keys) raw(indent).quoted(kv.key).raw(" ").quoted(kv.value).raw("\n");
+    }
+
+    void brush(const BrushDef3& b) {
+        raw(" brushDef3\n {\n");
+        pairs(b.keys, "  ");
+        for (const BrushSide& s : b.sides) {
+            raw("  ").numbers(s.plane).raw(" ( ").numbers(s.textureMatrix[0]).raw(" ").numbers(s.textureMatrix[1]);
+            raw(" ) ").quoted(s.material);
+            for (int f : s.flags) raw(" ").raw(std::to_string(f));
+            raw("\n");
+        }
+        raw(" }\n");
+    }
+
+    void patch(const PatchDef& p) {
+        raw(p.explicitSubdivisions ? " patchDef3\n {\n" : " patchDef2\n {\n");
+        raw("  ").quoted(p.material).raw("\n");
+        raw("  ").numbers(p.info).raw("\n");
+        raw("  (\n");
+        for (const std::vector<PatchPoint>& row : p.rows) {
+            raw("   (");
+            for (const PatchPoint& point : row) raw(" ").numbers(point);
+            raw(" )\n");
+        }
+        raw("  )\n");
+        pairs(p.keys, "  ");
+        raw(" }\n");
+    }
+
+    void primitive(const MapPrimitive& p, std::size_t index) {
+        raw("// primitive ").raw(std::to_string(index)).raw("\n{\n");
+        if (const BrushDef3* b = p.brush()) brush(*b);
+        else if (const PatchDef* patchDef = p.patch()) patch(*patchDef);
+        else if (const RawPrimitive* r = p.raw()) raw(r->text).raw("\n");
+        raw("}\n");
+    }
+
+    void entity(const MapEntity& e, std::size_t index) {
+        raw("// entity ").raw(std::to_string(index)).raw("\n{\n");
+        pairs(e.keys, "");
+        for (std::size_t j = 0; j < e.primitives.size(); ++j) primitive(e.primitives[j], j);
+        raw("}\n");
+    }
+
+private:
+    std::string out_;
+};
+
+}  // namespace
+
+std::string writeMapFile(const MapFile& map) {
+    Writer w;
+    w.raw("Version ").num(map.version).raw("\n");
+    for (std::size_t i = 0; i < map.entities.size(); ++i) w.entity(map.entities[i], i);
+    return w.take();
+}
+
+}  // namespace af
