@@ -1,0 +1,105 @@
+#include "af/collision/collision_world.h"
+
+#include "af/collision/narrowphase.h"
+
+#include <algorithm>
+
+namespace af {
+
+int CollisionWorld::addBody(const Polytope& shape, const CollisionFilter& filter) {
+    bodies_.push_back({shape, filter});
+    return static_cast<int>(bodies_.size()) - 1;
+}
+
+void CollisionWorld::excludePair(int a, int b) {
+    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+    const auto at = std::lower_bound(excluded_.begin(), excluded_.end(), key);
+    if (at == excluded_.end() || *at != key) excluded_.insert(at, key);
+}
+
+int CollisionWorld::addPlane(const Plane& plane, ContentsMask contents) {
+    Static s;
+    s.plane = plane;
+    s.isPlane = true;
+    s.contents = contents;
+    statics_.push_back(std::move(s));
+    return static_cast<int>(statics_.size()) - 1;
+}
+
+int CollisionWorld::addStatic(const Polytope& worldShape, ContentsMask contents) {
+    Static s;
+    s.shape = worldShape;
+    s.bounds = boundsOf(worldShape, RigidPose{}, 0);
+    s.contents = contents;
+    statics_.push_back(std::move(s));
+    return static_cast<int>(statics_.size()) - 1;
+}
+
+void CollisionWorld::removeStatic(int staticShape) { statics_[static_cast<std::size_t>(staticShape)].removed = true; }
+
+bool CollisionWorld::mayCollide(int a, int b) const {
+    if (a == b) return false;
+    const CollisionFilter& fa = bodies_[static_cast<std::size_t>(a)].filter;
+    const CollisionFilter& fb = bodies_[static_cast<std::size_t>(b)].filter;
+    if (!(fa.clipMask & fb.contents) && !(fb.clipMask & fa.contents)) return false;
+    if (std::binary_search(excluded_.begin(), excluded_.end(), std::pair{std::min(a, b), std::max(a, b)}))
+        return false;
+    if (fa.figure == fb.figure) return fa.selfCollision && fb.selfCollision && !settings_.skipSelfCollision;
+    return settings_.figuresCollide;
+}
+
+bool CollisionWorld::mayCollideWithStatic(int body, int staticShape) const {
+    const CollisionFilter& f = bodies_[static_cast<std::size_t>(body)].filter;
+    const Static& s = statics_[static_cast<std::size_t>(staticShape)];
+    return f.collidesWithStatic && !s.removed && (f.clipMask & s.contents) != 0;
+}
+
+void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<const Vec3> moves,
+                                  std::span<const Real> reach, Real margin, std::span<const std::uint8_t> awake,
+                                  std::vector<BodyContact>& out) {
+    out.clear();
+    auto isAwake = [&](int i) { return awake.empty() || awake[static_cast<std::size_t>(i)] != 0; };
+    auto at = [](auto span, int i) -> decltype(auto) { return span[static_cast<std::size_t>(i)]; };
+    auto pose = [&](int i) -> const RigidPose& { return at(poses, i); };
+
+    // Each box holds everything the body can reach in the step, so a pair's boxes overlap
+    // whenever the pair can get within its margin.
+    boxes_.resize(bodies_.size());
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+        boxes_[i] = boundsOf(bodies_[i].shape, poses[i], margin + reach[i] + moves[i].norm());
+    broadphase_.findPairs(boxes_, pairs_);
+
+    BodyContact contact;
+    for (const auto& [a, b] : pairs_) {
+        if (!isAwake(a) && !isAwake(b)) continue;
+        if (!mayCollide(a, b)) continue;
+        const Real pairMargin = margin + at(reach, a) + at(reach, b) + (at(moves, a) - at(moves, b)).norm();
+        contact.manifold = collide(bodyShape(a), pose(a), bodyShape(b), pose(b), pairMargin);
+        if (contact.manifold.empty()) continue;
+        contact.bodyA = a;
+        contact.bodyB = b;
+        contact.staticShape = -1;
+        out.push_back(contact);
+    }
+    for (int a = 0; a < static_cast<int>(bodies_.size()); ++a) {
+        if (!isAwake(a)) continue;
+        for (int s = 0; s < static_cast<int>(statics_.size()); ++s) {
+            const Static& shape = statics_[static_cast<std::size_t>(s)];
+            if (!mayCollideWithStatic(a, s)) continue;
+            const Real staticMargin = margin + at(reach, a) + at(moves, a).norm();
+            if (shape.isPlane) {
+                contact.manifold = collideWithPlane(bodyShape(a), pose(a), shape.plane, staticMargin);
+            } else {
+                if (!boxes_[static_cast<std::size_t>(a)].overlaps(shape.bounds)) continue;
+                contact.manifold = collide(bodyShape(a), pose(a), shape.shape, RigidPose{}, staticMargin);
+            }
+            if (contact.manifold.empty()) continue;
+            contact.bodyA = a;
+            contact.bodyB = kStaticWorld;
+            contact.staticShape = s;
+            out.push_back(contact);
+        }
+    }
+}
+
+}  // namespace af

@@ -1,0 +1,145 @@
+#include "shape_features.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace af::collision_detail {
+
+namespace {
+
+// Below this sine two unit normals count as parallel (or opposite): no arc between them.
+constexpr Real kParallelSine = 1e-6;
+
+// Parallel within this sine: one group. Tight, because the group's direction stands in for every
+// member's when finding axes.
+constexpr Real kGroupSine = 1e-9;
+
+// The arcs of the edge's normal cone from the faces on either side (see EdgeArc), appended to
+// `arcs`; marks the edge skipped when it has none to offer.
+void addArcs(const Polytope& p, int edgeIndex, EdgeFeature& e, std::vector<EdgeArc>& arcs) {
+    e.skip = e.direction.squaredNorm() <= kLengthTolerance * kLengthTolerance;
+    if (e.skip) {
+        return;
+    }
+    auto add = [&](const Vec3& from, const Vec3& to) { arcs.push_back({edgeIndex, from, to, 1}); };
+    const bool has0 = e.faces[0] >= 0, has1 = e.faces[1] >= 0;
+    // Outward within a face's plane: a counter-clockwise loop walks its edges with the face on
+    // the left, so walkingDirection × normal points away from it.
+    auto outward = [&](int side) {
+        const Vec3 walk = side == 0 ? e.direction : Vec3(-e.direction);
+        return Vec3(walk.cross(p.faces[e.faces[side]].normal).normalized());
+    };
+    if (has0 && has1) {
+        const Vec3& n0 = p.faces[e.faces[0]].normal;
+        const Vec3& n1 = p.faces[e.faces[1]].normal;
+        const Real cosine = n0.dot(n1);
+        if (std::abs(cosine) < 1 - kParallelSine * kParallelSine / 2) {
+            add(n0, n1);
+        } else if (cosine > 0) {
+            e.skip = true;  // two coplanar faces: every axis it could give is their normal
+        } else {
+            const Vec3 m = outward(0);  // folded flat: half a great circle through m
+            add(n0, m);
+            add(m, n1);
+        }
+    } else if (has0 || has1) {
+        const int side = has0 ? 0 : 1;
+        add(p.faces[e.faces[side]].normal, outward(side));
+    }
+}
+
+// Sorts `arcs` into groups of parallel edges and sets each arc's turn against its group.
+void groupArcs(ShapeFeatures& s) {
+    thread_local std::vector<int> groupOf;
+    thread_local std::vector<EdgeArc> unsorted;
+    unsorted.assign(s.arcs.begin(), s.arcs.end());
+    groupOf.assign(unsorted.size(), -1);
+    s.groups.clear();
+    for (size_t k = 0; k < unsorted.size(); ++k) {
+        const Vec3 d = s.edges[unsorted[k].edge].direction.normalized();
+        int g = 0;
+        while (g < int(s.groups.size()) && d.cross(s.groups[g].direction).squaredNorm() > kGroupSine * kGroupSine) {
+            ++g;
+        }
+        if (g == int(s.groups.size())) {
+            s.groups.push_back({d, 0, 0});
+        }
+        groupOf[k] = g;
+        ++s.groups[g].count;
+    }
+    int next = 0;
+    for (EdgeGroup& g : s.groups) {
+        g.first = next;
+        next += g.count;
+        g.count = 0;
+    }
+    for (size_t k = 0; k < unsorted.size(); ++k) {
+        EdgeGroup& g = s.groups[groupOf[k]];
+        EdgeArc& arc = s.arcs[g.first + g.count++];
+        arc = unsorted[k];
+        arc.turn = arc.from.cross(arc.to).dot(g.direction) >= 0 ? 1 : -1;
+    }
+}
+
+}  // namespace
+
+void prepare(const Polytope& polytope, ShapeFeatures& out) {
+    const int nv = int(polytope.vertices.size());
+    const int nf = int(polytope.faces.size());
+    Vec3 sum = Vec3::Zero();
+    for (const Vec3& v : polytope.vertices) {
+        sum += v;
+    }
+    out.centre = nv > 0 ? Vec3(sum / Real(nv)) : Vec3::Zero();
+
+    out.flat = false;
+    for (const Face& f : polytope.faces) {
+        out.flat = out.flat || f.normal.squaredNorm() == 0;
+    }
+
+    // Which face walks each directed edge u→v, in a V×V table: every edge is walked once in each
+    // direction (polytope.h). Only the entries of real edges are ever read, so only they are reset.
+    thread_local std::vector<std::int16_t> walker;
+    walker.resize(size_t(nv) * size_t(nv));
+    for (const std::array<int, 2>& e : polytope.edges) {
+        walker[size_t(e[0]) * nv + e[1]] = -1;
+        walker[size_t(e[1]) * nv + e[0]] = -1;
+    }
+    for (int f = 0; f < nf; ++f) {
+        if (polytope.faces[f].normal.squaredNorm() == 0) {
+            continue;
+        }
+        const std::vector<int>& loop = polytope.faces[f].loop;
+        for (size_t i = 0, n = loop.size(); i < n; ++i) {
+            walker[size_t(loop[i]) * nv + loop[i + 1 == n ? 0 : i + 1]] = std::int16_t(f);
+        }
+    }
+    out.edges.resize(polytope.edges.size());
+    out.arcs.clear();
+    out.arclessEdges.clear();
+    for (size_t k = 0; k < polytope.edges.size(); ++k) {
+        EdgeFeature& e = out.edges[k];
+        e.v0 = polytope.edges[k][0];
+        e.v1 = polytope.edges[k][1];
+        e.faces = {walker[size_t(e.v0) * nv + e.v1], walker[size_t(e.v1) * nv + e.v0]};
+        e.direction = polytope.vertices[e.v1] - polytope.vertices[e.v0];
+        const size_t before = out.arcs.size();
+        addArcs(polytope, int(k), e, out.arcs);
+        if (!e.skip && out.arcs.size() == before) {
+            out.arclessEdges.push_back(int(k));
+        }
+    }
+    groupArcs(out);
+}
+
+Real faceArea(const Polytope& polytope, int f) {
+    const std::vector<int>& loop = polytope.faces[f].loop;
+    Vec3 area = Vec3::Zero();
+    for (size_t i = 0; i < loop.size(); ++i) {
+        area += polytope.vertices[loop[i]].cross(polytope.vertices[loop[(i + 1) % loop.size()]]);
+    }
+    return area.norm();
+}
+
+}  // namespace af::collision_detail

@@ -1,0 +1,57 @@
+#pragma once
+// What the narrowphase needs of a polytope beyond its vertices and faces, none of it depending on
+// the pose: the faces on either side of every edge, each edge's normal cone as arcs on the Gauss
+// map, and the edges grouped by direction. All in the polytope's own frame.
+
+#include "af/geometry/polytope.h"
+
+#include <array>
+#include <vector>
+
+namespace af::collision_detail {
+
+// Features count as the same within this distance (file units): ties between candidate axes,
+// points on a clipping plane. Far above double rounding at body scale (the narrowphase works in
+// A's body frame), far below anything visible.
+inline constexpr Real kLengthTolerance = 1e-7;
+
+struct EdgeFeature {
+    int v0 = 0, v1 = 0;                // polytope.edges order: v0 < v1
+    std::array<int, 2> faces{-1, -1};  // walking v0→v1, walking v1→v0; −1 when without area
+    Vec3 direction = Vec3::Zero();     // v1 − v0
+    bool skip = false;  // zero length, or two coplanar faces (not a real edge)
+};
+
+// The directions in which an edge is the shape's support feature (its normal cone) form, on the
+// unit sphere, the arc between the normals of its two faces. An edge of a flat shape has a face
+// with no area or two opposite faces; its cone then runs through the outward direction m within
+// the flat face's plane, as one or two quarter arcs (n → m, m → −n).
+struct EdgeArc {
+    int edge = 0;
+    Vec3 from = Vec3::Zero(), to = Vec3::Zero();  // unit; the arc is shorter than a half circle
+    Real turn = 1;  // +1 when from × to points along the group's direction, −1 when against it
+};
+
+// Arcs grouped by their edges' direction (parallel or opposite within 1e-9 rad): the search for
+// crossing arcs tests each arc against each group of the other shape, not against each arc.
+struct EdgeGroup {
+    Vec3 direction = Vec3::UnitX();  // unit, the first member's edge direction
+    int first = 0, count = 0;        // into ShapeFeatures::arcs
+};
+
+struct ShapeFeatures {
+    std::vector<EdgeFeature> edges;  // polytope.edges order
+    std::vector<EdgeArc> arcs;       // group by group
+    std::vector<EdgeGroup> groups;
+    std::vector<int> arclessEdges;   // edges of length without arcs (segments: no face has area)
+    Vec3 centre = Vec3::Zero();      // vertex mean, an interior point for libccd's MPR
+    bool flat = false;               // some face has no area: a flat shape or a segment
+};
+
+// Fills `out` from `polytope` (no allocation once `out` has held a shape at least as large).
+void prepare(const Polytope& polytope, ShapeFeatures& out);
+
+// Twice the area of face f (Newell's formula).
+Real faceArea(const Polytope& polytope, int f);
+
+}  // namespace af::collision_detail
