@@ -30,6 +30,7 @@ af::Figure hungHumanoid() {
 af::World shaken(const af::Figure& figure, af::SolverKind solver) {
     af::WorldSettings settings;
     settings.solver = solver;
+    settings.comeToRest = false;  // measure the step, not a sleeping figure
     af::World world(figure, settings);
     std::mt19937 rng(3);
     std::uniform_real_distribution<af::Real> spin(-6, 6);

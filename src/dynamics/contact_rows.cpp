@@ -32,6 +32,20 @@ ConstraintRow rowAlong(const Contact& c, std::span<const RigidBody> bodies, cons
     return row;
 }
 
+// The row's J M⁻¹ Jᵀ, which its softness is relative to.
+Real diagonal(const ConstraintRow& row, std::span<const RigidBody> bodies) {
+    Real d = 0;
+    if (row.bodyA != kWorldBody) {
+        const RigidBody& a = bodies[static_cast<std::size_t>(row.bodyA)];
+        d += a.inverseMass * row.linearA.squaredNorm() + row.angularA.dot(a.inverseInertiaWorld() * row.angularA);
+    }
+    if (row.bodyB != kWorldBody) {
+        const RigidBody& b = bodies[static_cast<std::size_t>(row.bodyB)];
+        d += b.inverseMass * row.linearB.squaredNorm() + row.angularB.dot(b.inverseInertiaWorld() * row.angularB);
+    }
+    return d;
+}
+
 Real velocityAlong(const Contact& c, std::span<const RigidBody> bodies, const Vec3& d) {
     Real v = 0;
     if (c.bodyA != kWorldBody) v += d.dot(bodies[static_cast<std::size_t>(c.bodyA)].velocityAt(c.point));
@@ -46,9 +60,9 @@ int writeContactRows(const Contact& c, std::span<const RigidBody> bodies, const 
     ConstraintRow normal = rowAlong(c, bodies, c.normal);
     normal.lo = 0;
     normal.hi = kInfinity;
-    normal.cfm = settings.cfm;
+    normal.cfm = settings.relativeCfm * diagonal(normal, bodies);
     normal.error = settings.slop - c.depth;
-    const Real approach = velocityAlong(c, bodies, c.normal);
+    const Real approach = c.approachVelocity.value_or(velocityAlong(c, bodies, c.normal));
     if (approach < -settings.restitutionThreshold) normal.target = -c.restitution * approach;
     const int normalIndex = out.add(normal);
 
@@ -57,7 +71,7 @@ int writeContactRows(const Contact& c, std::span<const RigidBody> bodies, const 
         ConstraintRow row = rowAlong(c, bodies, t);
         row.frictionSource = normalIndex;
         row.frictionCoefficient = c.friction;
-        row.cfm = settings.cfm;
+        row.cfm = settings.relativeCfm * diagonal(row, bodies);
         out.add(row);
     };
     if (c.frictionDirection) {

@@ -12,6 +12,13 @@ Mat3 rotationFromMd5(const Md5Quat& q) {
     return conjugate.normalized().toRotationMatrix();
 }
 
+Md5Quat md5FromRotation(const Mat3& rotation) {
+    Eigen::Quaternion<Real> q(rotation);
+    q.normalize();
+    if (q.w() < 0) q.coeffs() = -q.coeffs();
+    return {-q.x(), -q.y(), -q.z(), q.w()};
+}
+
 int Skeleton::find(std::string_view name) const {
     for (std::size_t i = 0; i < names.size(); ++i)
         if (names[i] == name) return static_cast<int>(i);

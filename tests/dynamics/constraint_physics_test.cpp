@@ -140,7 +140,7 @@ TEST(ConstraintPhysicsLimit, HingeVLimitStopsAHardSwingAtBothSidesOfTheV) {
                                        afVector(kAnchor) + " axis ( 1, 0, 0 ) friction 0 limit -35, 50, 0 }\n");
     for (const Real speed : {1.0, 3.0}) {
         SCOPED_TRACE(testing::Message() << "speed × " << speed);
-        World world(figure);
+        World world(figure, test::dynamicsOnly());
         test::swingAbout(world, kAnchor, 35);
         spinAbout(world, 0, kAnchor, speed * Vec3(8, 0, 0));
         const Real lo = 10, hi = 60;
@@ -168,7 +168,7 @@ TEST(ConstraintPhysicsLimit, ASwingTurningJustShortOfALimitIsNotStoppedByIt) {
     const Figure figure =
         figureOfBlocks({"origin"}, cubeBob(Vec3::Zero()) + "hinge \"knee\" { body1 \"bob\" body2 \"world\" anchor " +
                                        afVector(kAnchor) + " axis ( 1, 0, 0 ) friction 0 limit 0, 20, 0 }\n");
-    World world(figure);
+    World world(figure, test::dynamicsOnly());
     test::swingAbout(world, kAnchor, 9.7);
     Real lastAmplitude = 0;
     for (int i = 0; i < 600; ++i) {
@@ -193,7 +193,7 @@ TEST(ConstraintPhysicsLimit, HingeReleasedNearItsLimitComesToRestOnIt) {
         figureOfBlocks({"origin"}, cubeBob(Vec3::Zero()) + "hinge \"knee\" { body1 \"bob\" body2 \"world\" anchor " +
                                        afVector(kAnchor) + " axis ( 1, 0, 0 ) friction 0 limit -35, 50, 0 }\n");
     for (const Real start : {12.0, 10.8, 10.3}) {
-        World world(figure);
+        World world(figure, test::dynamicsOnly());
         test::swingAbout(world, kAnchor, start);
         setAirFriction(world, 0.05);
         for (int i = 0; i < 300; ++i) world.step();
@@ -215,7 +215,7 @@ TEST(ConstraintPhysicsLimit, BallConeLimitStopsAHardSwingAtItsCone) {
                                        afVector(kAnchor) + " friction 0 coneLimit ( 3, 0, -4 ), 60, ( 3, 0, -4 ) }\n");
     for (const Real speed : {1.0, 3.0}) {
         SCOPED_TRACE(testing::Message() << "speed × " << speed);
-        World world(figure);
+        World world(figure, test::dynamicsOnly());
         spinAbout(world, 0, kAnchor, speed * Vec3(2, 9, -1.5));
         const auto slack = [&](const World& w) {
             const Vec3 shaft = w.bodies()[0].orientation * axis;  // the shaft is along the axis at spawn
@@ -238,7 +238,7 @@ TEST(ConstraintPhysicsLimit, BallPyramidLimitStopsAHardSwingAtItsFaces) {
     settings.gravity = 1066 * Vec3(-0.5, 0.6, -1).normalized();
     for (const Real speed : {1.0, 3.0}) {
         SCOPED_TRACE(testing::Message() << "speed × " << speed);
-        World world(figure, settings);
+        World world(figure, test::dynamicsOnly(settings));
         spinAbout(world, 0, kAnchor, speed * Vec3(7, -6, 3));
         const Vec3 e0(0, 1, 0), e2(0, 0, -1), e1 = e0.cross(e2);
         const auto slack = [&](const World& w) {
@@ -268,7 +268,7 @@ TEST(ConstraintPhysicsLimit, UniversalConeLimitStopsAHardSwingAtItsCone) {
     settings.gravity = 1066 * (turn(Vec3(1, -2, 0), 40) * Vec3(0, 0, -1));
     for (const Real speed : {1.0, 3.0}) {
         SCOPED_TRACE(testing::Message() << "speed × " << speed);
-        World world(figure, settings);
+        World world(figure, test::dynamicsOnly(settings));
         spinAbout(world, 0, kAnchor, speed * Vec3(7, -5, 0));
         Real twist = 0;
         const auto slack = [&](const World& w) {
@@ -311,7 +311,7 @@ TEST(ConstraintPhysicsUniversal, SwungAroundItCarriesSpinWithoutRelativeTwist) {
             "ballAndSocketJoint \"shoulder\" { body1 \"upper\" body2 \"world\" anchor ( 0, 0, 60 ) friction 0 }\n"
             "universalJoint \"elbow\" { body1 \"lower\" body2 \"upper\" anchor ( 0, 0, 40 ) "
             "shafts ( 0, 0, -1 ), ( 0, 0, 1 ) friction 0 coneLimit ( 0, 0, -1 ), 120 }\n");
-    World world(figure);
+    World world(figure, test::dynamicsOnly());
     spinAbout(world, 0, Vec3(0, 0, 60), Vec3(3, -2, 12));
     spinAbout(world, 1, Vec3(0, 0, 60), Vec3(-4, 5, 0));
     const Quat a0 = world.bodies()[1].orientation, b0 = world.bodies()[0].orientation;
@@ -362,7 +362,7 @@ Vec3 slopeAxis() { return Vec3(4, 0, -3) / 5; }
 // the continuous curve by 1/n: 1.7 % after 1 s, 0.8 % after 2 s. Checked within 2 %.
 TEST(ConstraintPhysicsSlider, SlideDistanceFollowsHalfGSinAlphaTSquared) {
     const Vec3 n = slopeAxis();
-    World world(blockOnSlider());
+    World world(blockOnSlider(), test::dynamicsOnly());
     const Vec3 start = world.bodies()[0].position;
     const Real a = 1066 * kSinSlope;
     for (int second = 1; second <= 2; ++second) {
@@ -383,7 +383,7 @@ TEST(ConstraintPhysicsSlider, SlideDistanceFollowsHalfGSinAlphaTSquared) {
 // cross force must not change its progress along the axis.
 TEST(ConstraintPhysicsSlider, PushedAndTwistedItSlidesWithoutOffAxisDriftOrRotation) {
     const Vec3 n = slopeAxis();
-    World world(blockOnSlider());
+    World world(blockOnSlider(), test::dynamicsOnly());
     const RigidBody& block = world.bodies()[0];
     const Vec3 start = block.position;
     const Quat startOrientation = block.orientation;
@@ -426,7 +426,7 @@ TEST(ConstraintPhysicsSlider, OnASpinningRailItSlidesWithoutOffAxisDriftOrRotati
                                              "slider \"rail\" { body1 \"block\" body2 \"rail\" axis ( 1, 0, 0 ) }\n");
     WorldSettings settings;
     settings.gravity.setZero();
-    World world(figure, settings);
+    World world(figure, test::dynamicsOnly(settings));
     spinAbout(world, 0, Vec3::Zero(), Vec3(6, 0.3, 0.5));
     spinAbout(world, 1, Vec3::Zero(), Vec3(6, 0.3, 0.5));
     world.bodies()[1].linearVelocity += Vec3(10, 0, 0);
@@ -472,7 +472,7 @@ TEST(ConstraintPhysicsFixed, TumblingPairKeepsItsRelativePose) {
                                               "fixed \"weld\" { body1 \"b\" body2 \"a\" }\n");
     WorldSettings settings;
     settings.gravity.setZero();
-    World world(figure, settings);
+    World world(figure, test::dynamicsOnly(settings));
     std::mt19937 rng(11);
     std::uniform_real_distribution<Real> speed(-50, 50), spin(-5, 5);
     for (RigidBody& b : world.bodies()) {
@@ -532,7 +532,7 @@ TEST(ConstraintPhysicsSpring, HangingBodyRestsWhereWeightEqualsStretchTimesExten
     const Real rest = 20, start = 30;
     std::vector<Real> extensions;
     for (const Real stretch : {100.0, 400.0}) {
-        World world(bobOnSpring(start, stretch, rest, 0, 0, 0.05));
+        World world(bobOnSpring(start, stretch, rest, 0, 0, 0.05), test::dynamicsOnly());
         for (int i = 0; i < 480; ++i) world.step();
         const Real weight = world.bodies()[0].mass() * 1066;
         const Real length = springLength(world.joints()[0], world.bodies());
@@ -559,7 +559,7 @@ TEST(ConstraintPhysicsSpring, PushedInBodyRestsWhereWeightEqualsCompressTimesCom
     const Real rest = 40, start = 40, compress = 100;
     WorldSettings settings;
     settings.gravity = Vec3(0, 0, 1066);
-    World world(bobOnSpring(start, 0, rest, 0, 0, 0.05, compress), settings);
+    World world(bobOnSpring(start, 0, rest, 0, 0, 0.05, compress), test::dynamicsOnly(settings));
     for (int i = 0; i < 480; ++i) world.step();
     const Real weight = world.bodies()[0].mass() * 1066;
     const Real x = rest - springLength(world.joints()[0], world.bodies());
@@ -575,7 +575,7 @@ TEST(ConstraintPhysicsSpring, PushedInBodyRestsWhereWeightEqualsCompressTimesCom
 // stop at 50, a hard kick up (800 units/s) at 30. Violations in length units (engine: jointError).
 TEST(ConstraintPhysicsSpring, MinAndMaxLengthLimitsStopHardKicks) {
     const Real top = 40, minLength = 30, maxLength = 50;
-    World world(bobOnSpring(top, 100, 20, minLength, maxLength, 0));
+    World world(bobOnSpring(top, 100, 20, minLength, maxLength, 0), test::dynamicsOnly());
     Real longest = 0, shortest = 1e9, worstEngine = 0;
     auto run = [&](int steps) {
         for (int i = 0; i < steps; ++i) {
@@ -606,7 +606,7 @@ TEST(ConstraintPhysicsSpring, MinAndMaxLengthLimitsStopHardKicks) {
 // rests at exactly maxLength.
 TEST(ConstraintPhysicsSpring, MaxLengthLimitHoldsTheBobBelowItsFreeEquilibrium) {
     const Real top = 30, maxLength = 40;
-    World world(bobOnSpring(top, 100, 20, 0, maxLength, 0.05));
+    World world(bobOnSpring(top, 100, 20, 0, maxLength, 0.05), test::dynamicsOnly());
     Real longest = 0;
     for (int i = 0; i < 300; ++i) {
         world.step();
@@ -650,9 +650,9 @@ struct SwingHistory {
 };
 
 SwingHistory swingHistory(Real friction, Real startDegrees, int steps) {
-    World bottomWorld(hingePendulum(friction));
+    World bottomWorld(hingePendulum(friction), test::dynamicsOnly());
     const Real bottom = test::potentialEnergy(bottomWorld);
-    World world(hingePendulum(friction));
+    World world(hingePendulum(friction), test::dynamicsOnly());
     test::swingAbout(world, kHingeAnchor, startDegrees);
     SwingHistory h;
     Real previousAngle = hingeAngle(world.joints()[0], world.bodies());
@@ -729,7 +729,7 @@ TEST(ConstraintPhysicsJointFriction, FrictionDrainsEnergySwingAfterSwingAndMoreF
 // through the three samples around each turning point.
 TEST(ConstraintPhysicsJointFriction, EachHalfSwingLosesTwoFOverLOfAmplitude) {
     const Real f = 0.2;
-    World world(hingePendulum(f));
+    World world(hingePendulum(f), test::dynamicsOnly());
     test::swingAbout(world, kHingeAnchor, 10);
     std::vector<Real> angles = {hingeAngle(world.joints()[0], world.bodies())};
     for (int i = 0; i < 600; ++i) {
@@ -774,7 +774,7 @@ TEST(ConstraintPhysicsJointFriction, EachHalfSwingLosesTwoFOverLOfAmplitude) {
 TEST(ConstraintPhysicsJointFriction, FrictionImpulseAndEnergyRemovedPerStepStayWithinFTimesTheJointImpulse) {
     const Real f = 0.5;
     const Figure frictional = hingePendulum(f), frictionless = hingePendulum(0);
-    World world(frictional);
+    World world(frictional, test::dynamicsOnly());
     const Real bottom = test::potentialEnergy(world);
     test::swingAbout(world, kHingeAnchor, 30);
     const Real startEnergy = swingEnergy(world, bottom);
@@ -796,7 +796,7 @@ TEST(ConstraintPhysicsJointFriction, FrictionImpulseAndEnergyRemovedPerStepStayW
     for (int i = 0; i < 240; ++i) {
         const Real bound = f * world.joints()[0].lastImpulse;
         const Real accelerationBefore = gravityAcceleration(world);
-        World free(frictionless);
+        World free(frictionless, test::dynamicsOnly());
         free.bodies() = world.bodies();
         world.step();
         free.step();

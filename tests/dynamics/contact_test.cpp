@@ -44,7 +44,7 @@ Real slideAfter(Real slopeDegrees, Real friction, Real seconds) {
     WorldSettings settings;
     const Real a = slopeDegrees * kPi / 180;
     settings.gravity = 1066 * Vec3(std::sin(a), 0, -std::cos(a));
-    World world(box(), settings);
+    World world(box(), test::dynamicsOnly(settings));
     world.setContactSource(groundContacts(friction));
     const Real x0 = world.bodies()[0].position.x();
     for (int i = 0; i < static_cast<int>(seconds * 60); ++i) world.step();
@@ -68,7 +68,7 @@ TEST(Contact, BoxSlidesAboveTheFrictionAngleAsCoulombSays) {
 }
 
 TEST(Contact, RestingBoxDoesNotSinkOrJitter) {
-    World world(box());
+    World world(box(), test::dynamicsOnly());
     world.setContactSource(groundContacts(0.8));
     for (int i = 0; i < 300; ++i) world.step();
     EXPECT_NEAR(world.bodies()[0].position.z(), kHalf, ContactSettings{}.slop + 1e-6);
@@ -77,7 +77,7 @@ TEST(Contact, RestingBoxDoesNotSinkOrJitter) {
 }
 
 TEST(Contact, DroppedBoxBouncesWithItsRestitution) {
-    World world(box());
+    World world(box(), test::dynamicsOnly());
     world.bodies()[0].position.z() = kHalf + 0.05;
     world.bodies()[0].linearVelocity = Vec3(0, 0, -300);
     world.setContactSource(groundContacts(0, 0.4));

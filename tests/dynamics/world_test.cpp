@@ -39,7 +39,7 @@ std::vector<Real> upwardCrossings(World& world, int steps) {
 
 TEST(WorldPendulum, PeriodMatchesSmallAngleTheory) {
     const Real half = 2, length = 30;
-    World world(pendulum(half, length));
+    World world(pendulum(half, length), test::dynamicsOnly());
     tilt(world, Vec3(0, 0, length), 2);
     const RigidBody& bob = world.bodies()[0];
     const Real m = bob.mass();
@@ -57,7 +57,7 @@ TEST(WorldPendulum, PeriodMatchesSmallAngleTheory) {
 // not happen is a drift. Compare the mean energy of the first and of the hundredth period.
 TEST(WorldPendulum, EnergyDriftsLessThanOnePercentOverAHundredPeriods) {
     const Real half = 2, length = 30;
-    World world(pendulum(half, length));
+    World world(pendulum(half, length), test::dynamicsOnly());
     const Real bottom = test::potentialEnergy(world);
     tilt(world, Vec3(0, 0, length), 30);
     const Real swing = test::potentialEnergy(world) + world.kineticEnergy() - bottom;  // of the oscillation
@@ -84,7 +84,7 @@ TEST(WorldPendulum, EnergyDriftsLessThanOnePercentOverAHundredPeriods) {
 Real runChain(SolverKind solver, Real seconds) {
     WorldSettings settings;
     settings.solver = solver;
-    World world(test::hangingChain(20, 300), settings);
+    World world(test::hangingChain(20, 300), test::dynamicsOnly(settings));
     test::swingAbout(world, Vec3(0, 0, 300), 30);
     Real worst = 0;
     for (int i = 0; i < static_cast<int>(seconds * 60); ++i) {
@@ -109,7 +109,7 @@ TEST(WorldChain, TwentyLinksKeepTheirJointsWithinATenThousandthOfAUnit) {
 // Released horizontally, a long chain whips its end round far faster than it fell: the joints
 // must hold and the motion must never have more energy than the fall released.
 TEST(WorldChain, ChainReleasedHorizontallyWhipsWithoutGainingEnergy) {
-    World world(test::hangingChain(20, 300));
+    World world(test::hangingChain(20, 300), test::dynamicsOnly());
     test::swingAbout(world, Vec3(0, 0, 300), 90);
     const Real start = test::potentialEnergy(world);
     Real worstJoint = 0, worstGain = 0;
@@ -125,7 +125,7 @@ TEST(WorldChain, ChainReleasedHorizontallyWhipsWithoutGainingEnergy) {
 
 TEST(WorldChain, TwoRunsAreBitIdentical) {
     auto run = [] {
-        World world(horizontalChain(8, 100));
+        World world(horizontalChain(8, 100), test::dynamicsOnly());
         for (int i = 0; i < 120; ++i) world.step();
         std::vector<Real> state;
         for (const RigidBody& b : world.bodies()) {
@@ -146,7 +146,7 @@ TEST(WorldChain, TwoRunsAreBitIdentical) {
 TEST(WorldChain, InternalForcesConserveMomentum) {
     WorldSettings settings;
     settings.gravity.setZero();
-    World world(horizontalChain(6, 0, true, 5), settings);
+    World world(horizontalChain(6, 0, true, 5), test::dynamicsOnly(settings));
     std::mt19937 rng(7);
     std::uniform_real_distribution<Real> speed(-20, 20), spin(-2, 2);
     for (RigidBody& b : world.bodies()) {

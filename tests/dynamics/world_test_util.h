@@ -84,6 +84,14 @@ inline Figure hangingChain(int links, Real height) {
     return figureFromText(text + "}\n", namesOnlySkeleton(names));
 }
 
+// Settings for tests of joints and integration alone: no rest test and no self collision, so
+// that what is measured is the constraint physics.
+inline WorldSettings dynamicsOnly(WorldSettings settings = {}) {
+    settings.comeToRest = false;
+    settings.collision.skipSelfCollision = true;
+    return settings;
+}
+
 // Turns every body rigidly about `pivot` by `degrees` about +X.
 inline void swingAbout(World& world, const Vec3& pivot, Real degrees) {
     const Quat turn(Eigen::AngleAxis<Real>(degrees * 3.14159265358979323846 / 180, Vec3::UnitX()));

@@ -26,12 +26,20 @@ struct Contact {
     Real friction = 0;                 // Coulomb coefficient μ
     Real restitution = 0;              // Doom: 0.4 for every body
     std::optional<Vec3> frictionDirection;  // world; one friction row along it when given
+    // The normal velocity (B towards A, negative when approaching) the bounce is judged from.
+    // A world step takes it from before gravity acted in the step, as Doom does: otherwise a
+    // body resting on the ground, whose predicted velocity is g·dt (17.8 units/s at 60 Hz) into
+    // it, would bounce every step. Empty: the bodies' current velocities.
+    std::optional<Real> approachVelocity;
 };
 
 struct ContactSettings {
     Real restitutionThreshold = 2;  // units/s of approach below which contacts do not bounce (Doom: 2)
     Real slop = 0.05;               // units of penetration left alone, so resting contacts stay touching
-    Real cfm = 0;                   // softness of normal and friction rows
+    // Softness of normal and friction rows, relative to the row's own J M⁻¹ Jᵀ (as joints.h):
+    // four points under a box are one more than its three contact freedoms, and without some
+    // softness that redundancy makes the exact solver's system singular.
+    Real relativeCfm = 1e-9;
 };
 
 // Appends the rows of one contact; returns the index of its normal row.

@@ -4,8 +4,10 @@
 // One step (of settings.timeStep, split into substeps):
 //  1. springs add their forces; every body's velocity is predicted with gravity and the
 //     external forces (integrateVelocity);
-//  2. every joint writes its rows (equality, limits, joint friction), and the contact source,
-//     if any, adds contact rows;
+//  2. the collision world finds the contact manifolds of the predicted motion (speculative:
+//     pairs closer than what the step can close get points, see contactMargin); every joint
+//     writes its rows (equality, limits, joint friction), every contact point its normal and
+//     friction rows, and the extra row source, if any, adds its rows;
 //  3. the velocity LCP  J M⁻¹ Jᵀ λ = target − J v + w  is solved (exact pivoting or PGS, warm
 //     started from the previous step's pattern) and the impulses applied;
 //  4. positions are integrated with the new velocities, then air friction;
@@ -16,11 +18,22 @@
 //     solved for displacements (not velocities), until converged, for what is left:
 //     older joint errors, limit and contact penetration. Correcting them by moving positions
 //     instead of adding Baumgarte velocity keeps a resting figure from gaining energy.
+//
+// Rest and wake (doom3-af-spec.md §4.11, rest.h): after each step every awake figure's
+// RestMonitor is asked. Figures that touch each other form a group that rests only when all of
+// them would, and then rests together; a resting figure's bodies have zero velocity, are not
+// integrated and cost no solver time. A resting figure wakes, with everything it touches, when
+// an awake body touches it, when an impulse above impulseThreshold or any force is applied to
+// it, when the caller says so (wakeFigure, after setting velocities or poses), or when a static
+// shape is removed.
 // Deterministic: the same inputs give bit-identical results.
 
+#include "af/collision/collision_world.h"
 #include "af/dynamics/constraint_row.h"
+#include "af/dynamics/contact.h"
 #include "af/dynamics/joints.h"
 #include "af/dynamics/lcp.h"
+#include "af/dynamics/rest.h"
 #include "af/dynamics/rigid_body.h"
 #include "af/figure/figure.h"
 
@@ -46,6 +59,17 @@ struct WorldSettings {
     // positionTolerance (length units, or radians for angular rows). 0 turns projection off.
     int positionIterations = 8;
     Real positionTolerance = 1e-10;
+    // Contacts: a pair gets contact points while closer than contactMargin plus the distance
+    // the two can close on each other within the step (speculative contacts: a fast body is
+    // stopped at the surface it would pass through within the step, so nothing tunnels through
+    // a thin floor; see CollisionWorld::findContacts).
+    Real contactMargin = 1;  // units
+    ContactSettings contact;
+    CollisionSettings collision;
+    // Rest: figures are tested after every step (rest.h) unless this is off. Impulses smaller
+    // than impulseThreshold are ignored, as Doom ignores them, so they cannot wake a figure.
+    bool comeToRest = true;
+    Real impulseThreshold = 500;  // mass units · units/s (Doom's IMPULSE_THRESHOLD)
 };
 
 // What the last step did.
@@ -58,19 +82,52 @@ struct StepReport {
     int shakeRefusals = 0;         // substeps whose SHAKE correction was refused (world.cpp)
 };
 
-// Appends rows for the current step (hand-made contacts until collision exists).
+// Appends rows for the current step (hand-made contacts in tests, drags in the console).
 using RowSource = std::function<void(std::span<const RigidBody>, ConstraintRows&)>;
 
 class World {
 public:
+    explicit World(const WorldSettings& settings = {});
     explicit World(const Figure& figure, const WorldSettings& settings = {});
+    // Bodies and joints without collision shapes: they collide with nothing.
     World(std::vector<RigidBody> bodies, std::vector<Joint> joints, const WorldSettings& settings = {});
     ~World();
     World(World&&) noexcept;
     World& operator=(World&&) noexcept;
 
+    // Adds a figure's bodies (with their shapes and collision filters) and joints; returns the
+    // figure's number. Its bodies follow those already in the world.
+    int addFigure(const Figure& figure);
+    struct FigureRange {
+        int firstBody = 0, bodyCount = 0, firstJoint = 0, jointCount = 0;
+    };
+    const std::vector<FigureRange>& figures() const;
+
+    // The static world (planes, brushes) and the collision rules live here.
+    CollisionWorld& collision();
+    const CollisionWorld& collision() const;
+
     void step();
     void setContactSource(RowSource source);
+
+    // Rest and wake (see the top of this file).
+    bool figureAtRest(int figure) const;
+    bool atRest() const;  // every figure at rest (false for a world without figures)
+    void wakeFigure(int figure);
+    // An impulse (mass units · units/s) at a world point of a body: changes its velocities now,
+    // and wakes its figure; ignored when smaller than impulseThreshold.
+    void applyImpulse(int body, const Vec3& worldPoint, const Vec3& impulse);
+    // A force (mass units · units/s²) at a world point, for the next step only; wakes the figure.
+    void addForce(int body, const Vec3& worldPoint, const Vec3& force);
+    // The figure a body belongs to, or -1.
+    int figureOf(int body) const;
+    // Removes a static shape of the collision world and wakes every figure (what lay on it falls).
+    void removeStatic(int staticShape);
+
+    // Contact manifolds found by the last step (at its start poses).
+    const std::vector<BodyContact>& contacts() const;
+    // Deepest penetration of the last step's contact points at the current poses (0 if none).
+    Real maxPenetration() const;
 
     std::vector<RigidBody>& bodies();
     const std::vector<RigidBody>& bodies() const;

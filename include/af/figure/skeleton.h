@@ -21,6 +21,8 @@ struct JointTransform {
 
 // The rotation (joint-local → parent or model space) of an md5 quaternion.
 Mat3 rotationFromMd5(const Md5Quat& q);
+// The inverse: the md5 quaternion (Doom's conjugated convention, w ≥ 0) of a rotation.
+Md5Quat md5FromRotation(const Mat3& rotation);
 
 struct Skeleton {
     std::vector<std::string> names;

@@ -1,0 +1,97 @@
+#include "contact_set.h"
+
+#include <algorithm>
+
+namespace af {
+
+namespace {
+
+// splitmix64's finaliser: spreads the identifying numbers over the whole key.
+std::uint64_t mix(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+Vec3 toLocal(const RigidBody* body, const Vec3& world) {
+    return body ? Vec3(body->orientation.conjugate() * (world - body->position)) : world;
+}
+
+Vec3 toWorld(const RigidBody* body, const Vec3& local) {
+    return body ? Vec3(body->position + body->orientation * local) : local;
+}
+
+const RigidBody* bodyOrNull(std::span<const RigidBody> bodies, int index) {
+    return index == kWorldBody ? nullptr : &bodies[static_cast<std::size_t>(index)];
+}
+
+}  // namespace
+
+void ContactSet::gather(const std::vector<BodyContact>& manifolds, std::span<const RigidBody> bodies,
+                        std::span<const BodyMaterial> materials) {
+    points_.clear();
+    for (const BodyContact& c : manifolds) {
+        const int bodyB = c.bodyB == kStaticWorld ? kWorldBody : c.bodyB;
+        const BodyMaterial& a = materials[static_cast<std::size_t>(c.bodyA)];
+        // Doom: μ is body A's, lowered to B's when B's is lower.
+        Real friction = a.friction;
+        if (bodyB != kWorldBody) friction = std::min(friction, materials[static_cast<std::size_t>(bodyB)].friction);
+        const std::uint64_t pairKey = mix(mix(static_cast<std::uint64_t>(c.bodyA)) ^
+                                          static_cast<std::uint64_t>(c.bodyB == kStaticWorld ? (1ull << 32) + static_cast<std::uint64_t>(c.staticShape)
+                                                                                             : static_cast<std::uint64_t>(c.bodyB)));
+        const Vec3& n = c.manifold.normal;
+        for (int i = 0; i < c.manifold.count; ++i) {
+            const ManifoldPoint& m = c.manifold.points[static_cast<std::size_t>(i)];
+            ContactPoint p;
+            p.bodyA = c.bodyA;
+            p.bodyB = bodyB;
+            p.normal = n;
+            // Separation n·(pA − pB) = −depth, split evenly about the reported midpoint.
+            p.localA = toLocal(bodyOrNull(bodies, c.bodyA), m.point - n * (m.depth / 2));
+            p.localB = toLocal(bodyOrNull(bodies, bodyB), m.point + n * (m.depth / 2));
+            p.friction = friction;
+            p.restitution = a.bounciness;
+            p.frictionDirection = a.frictionDirection;
+            p.key = mix(pairKey ^ m.id);
+            const RigidBody* a = bodyOrNull(bodies, c.bodyA);
+            const RigidBody* b = bodyOrNull(bodies, bodyB);
+            p.approachVelocity = n.dot((a ? a->velocityAt(m.point) : Vec3::Zero()) - (b ? b->velocityAt(m.point) : Vec3::Zero()));
+            points_.push_back(p);
+        }
+    }
+}
+
+Contact ContactSet::current(const ContactPoint& p, std::span<const RigidBody> bodies) const {
+    const RigidBody* a = bodyOrNull(bodies, p.bodyA);
+    const Vec3 onA = toWorld(a, p.localA);
+    const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
+    Contact c;
+    c.bodyA = p.bodyA;
+    c.bodyB = p.bodyB;
+    c.point = (onA + onB) / 2;
+    c.normal = p.normal;
+    c.depth = -p.normal.dot(onA - onB);
+    c.friction = p.friction;
+    c.restitution = p.restitution;
+    c.approachVelocity = p.approachVelocity;
+    if (p.frictionDirection) c.frictionDirection = Vec3(a->orientation * *p.frictionDirection);
+    return c;
+}
+
+void ContactSet::writeRows(std::span<const RigidBody> bodies, const ContactSettings& settings, ConstraintRows& rows,
+                           std::vector<std::uint64_t>& keys) const {
+    for (const ContactPoint& p : points_) {
+        const std::size_t first = rows.size();
+        writeContactRows(current(p, bodies), bodies, settings, rows);
+        for (std::size_t r = first; r < rows.size(); ++r) keys.push_back(p.key + (r - first));
+    }
+}
+
+Real ContactSet::maxPenetration(std::span<const RigidBody> bodies) const {
+    Real worst = 0;
+    for (const ContactPoint& p : points_) worst = std::max(worst, current(p, bodies).depth);
+    return worst;
+}
+
+}  // namespace af

@@ -1,0 +1,62 @@
+#pragma once
+// The contact points of one step, attached to their bodies.
+//
+// The collision world reports manifolds at the start-of-step poses. Each point is kept as the two
+// surface points it joins, pA on A and pB on B, in their body frames (world frame for the static
+// world), and the manifold normal n (world, B → A), fixed for the step. Wherever the bodies have
+// moved since, the separation is n·(pA − pB) and the contact point their midpoint. The position
+// projection and the penetration report read contacts this way, without another collision query.
+
+#include "af/collision/collision_world.h"
+#include "af/dynamics/contact.h"
+#include "af/dynamics/rigid_body.h"
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace af {
+
+// What a body's surface is made of (Doom: contactFriction, bounciness, frictionDirection).
+struct BodyMaterial {
+    Real friction = 0;
+    Real bounciness = 0;
+    std::optional<Vec3> frictionDirection;  // body frame
+};
+
+struct ContactPoint {
+    int bodyA = 0;
+    int bodyB = kWorldBody;
+    Vec3 normal = Vec3::UnitZ();
+    Vec3 localA = Vec3::Zero();
+    Vec3 localB = Vec3::Zero();
+    Real friction = 0;
+    Real restitution = 0;
+    std::optional<Vec3> frictionDirection;  // A's, body frame
+    std::uint64_t key = 0;                  // the same point in the next step has the same key
+    Real approachVelocity = 0;              // n·(v_A − v_B) at the point when gathered
+};
+
+class ContactSet {
+public:
+    // Call before the step changes velocities: each point's approach velocity, which decides
+    // whether it bounces, is taken from the bodies as they are now.
+    void gather(const std::vector<BodyContact>& manifolds, std::span<const RigidBody> bodies,
+                std::span<const BodyMaterial> materials);
+
+    // The contact at the bodies' current poses.
+    Contact current(const ContactPoint& point, std::span<const RigidBody> bodies) const;
+
+    // Appends every point's rows, and one key per row (the point's key and the row's place).
+    void writeRows(std::span<const RigidBody> bodies, const ContactSettings& settings, ConstraintRows& rows,
+                   std::vector<std::uint64_t>& keys) const;
+
+    Real maxPenetration(std::span<const RigidBody> bodies) const;
+    std::size_t size() const { return points_.size(); }
+
+private:
+    std::vector<ContactPoint> points_;
+};
+
+}  // namespace af

@@ -1,0 +1,34 @@
+#pragma once
+// Warm starts keyed by row identity. Every row of a step carries a key naming what wrote it (a
+// joint and the row's place in it, or a contact point and the row's place in it); the next step
+// starts each row from the state and impulse the row with the same key ended with, whatever rows
+// came or went in between (limits engaging, contact points appearing). Rows never seen start
+// Unknown with no impulse.
+
+#include "af/dynamics/lcp.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace af {
+
+class WarmStartCache {
+public:
+    void remember(std::span<const std::uint64_t> keys, std::span<const LcpRowState> states,
+                  std::span<const Real> impulses);
+    // Fills the guesses of `keys`; returns how many rows were found.
+    int recall(std::span<const std::uint64_t> keys, std::span<LcpRowState> states, std::span<Real> impulses) const;
+    void clear() { entries_.clear(); }
+
+private:
+    struct Entry {
+        std::uint64_t key;
+        LcpRowState state;
+        Real impulse;
+        bool operator<(const Entry& o) const { return key < o.key; }
+    };
+    std::vector<Entry> entries_;  // sorted by key
+};
+
+}  // namespace af

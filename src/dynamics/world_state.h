@@ -1,0 +1,80 @@
+#pragma once
+// World's runtime state, shared by the files that implement the step (world.cpp: building and
+// queries; world_step.cpp: the step itself).
+
+#include "af/dynamics/world.h"
+#include "contact_set.h"
+#include "row_system.h"
+#include "shake.h"
+#include "warm_start.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace af {
+
+struct World::State {
+    WorldSettings settings;
+    std::vector<RigidBody> bodies;
+    std::vector<Joint> joints;
+    std::vector<FigureRange> figures;
+    RowSource extraRows;
+    Real time = 0;
+    StepReport report;
+    int failures = 0;
+
+    // Collision: shapes and filters, per-body surface data and reach, this step's contacts.
+    CollisionWorld collision;
+    std::vector<BodyMaterial> materials;
+    std::vector<Real> radius;  // farthest shape vertex from the centre of mass
+    std::vector<Real> reach;  // how far a body's turn carries its surface in the step
+    std::vector<Vec3> moves;  // how far a body's velocity carries it in the step
+    std::vector<RigidPose> poses;
+    std::vector<BodyContact> manifolds;
+    ContactSet contacts;
+
+    // Rest: one monitor per figure, and who is awake.
+    std::vector<RestMonitor> rest;
+    std::vector<std::uint8_t> figureResting;  // per figure
+    std::vector<int> bodyFigure;              // per body: its figure, or -1 (always awake)
+    std::vector<std::uint8_t> bodyAwake;      // per body
+    std::vector<Vec3> startLinear, startAngular;
+    std::vector<BodyMotion> motion;
+    std::vector<int> group;  // per figure: union-find parent, figures touching each other
+
+    ConstraintRows rows;
+    std::vector<std::uint64_t> rowKeys;  // one per row: what wrote it (see warm_start.h)
+    std::vector<JointRowRange> ranges;
+    RowSystem system;
+    LcpExactSolver exact;
+    LcpExactSolver exactPosition;
+    LcpPgsSolver pgs;
+    ShakeCorrection shake;
+    std::vector<RigidBody> beforeShake;
+    WarmStartCache warmStart;
+    WarmStartCache positionWarmStart;
+
+    void addBody(const RigidBody& body, const Polytope& shape, const CollisionFilter& filter,
+                 const BodyMaterial& material, int figure);
+
+    bool awake(int body) const { return body == kWorldBody || bodyAwake[static_cast<std::size_t>(body)] != 0; }
+    void wake(int figure);
+    void refreshAwake();
+    bool wakeTouched();
+    void testRest(Real dt);
+    void putToRest(int figure);
+
+    void substep(Real dt);
+    void findContacts(Real dt);
+    void findContactsOnce(Real dt);
+    void writeRows();
+    void allowApproach(Real dt);
+    LcpStatus solveVelocities();
+    void closeDrift(Real dt);
+    void projectPositions();
+    void settleNewContacts();
+    LcpStatus solvePositions();
+    Real largestViolation() const;
+};
+
+}  // namespace af

@@ -1,0 +1,129 @@
+// Whole scenes with real collision: boxes and our humanoid dropped on floors and on each other.
+
+#include "af/geometry/shapes.h"
+#include "scene_test_util.h"
+
+#include <algorithm>
+
+namespace af {
+namespace {
+
+using test::freeBox;
+using test::humanoidAt;
+
+Real lowestPoint(const World& world, int figure) {
+    const World::FigureRange r = world.figures()[static_cast<std::size_t>(figure)];
+    Real lowest = 1e30;
+    for (int i = r.firstBody; i < r.firstBody + r.bodyCount; ++i) {
+        const RigidBody& b = world.bodies()[static_cast<std::size_t>(i)];
+        for (const Vec3& v : world.collision().bodyShape(i).vertices) lowest = std::min(lowest, (b.position + b.orientation * v).z());
+    }
+    return lowest;
+}
+
+Real centreHeight(const World& world, int figure) {
+    const World::FigureRange r = world.figures()[static_cast<std::size_t>(figure)];
+    Real sum = 0, mass = 0;
+    for (int i = r.firstBody; i < r.firstBody + r.bodyCount; ++i) {
+        const RigidBody& b = world.bodies()[static_cast<std::size_t>(i)];
+        sum += b.mass() * b.position.z();
+        mass += b.mass();
+    }
+    return sum / mass;
+}
+
+TEST(CollisionScene, BoxDroppedFlatRestsOnFourPointsWithoutDrift) {
+    WorldSettings awake;
+    awake.comeToRest = false;  // a resting box looks for no contacts; this test counts them
+    World world(freeBox(Vec3(8, 8, 8), Vec3(0, 0, 40)), awake);
+    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    Real deepest = 0;
+    for (int i = 0; i < 180; ++i) {
+        world.step();
+        deepest = std::max(deepest, world.maxPenetration());
+    }
+    ASSERT_EQ(world.contacts().size(), 1u);
+    EXPECT_EQ(world.contacts()[0].manifold.count, 4);
+    EXPECT_LT(deepest, 0.5);
+    const RigidBody& box = world.bodies()[0];
+    EXPECT_NEAR(box.position.z(), 8, 0.5);
+    EXPECT_LT(std::hypot(box.position.x(), box.position.y()), 1e-6) << "no sideways drift";
+    EXPECT_LT(box.angularVelocity.norm(), 1e-6);
+}
+
+TEST(CollisionScene, StackOfFiveBoxesStandsForTenSeconds) {
+    World world;
+    for (int i = 0; i < 5; ++i) world.addFigure(freeBox(Vec3(8, 8, 8), Vec3(0, 0, 8 + 16.5 * i)));
+    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    Real deepest = 0;
+    for (int i = 0; i < 600; ++i) {
+        world.step();
+        deepest = std::max(deepest, world.maxPenetration());
+    }
+    for (int i = 0; i < 5; ++i) {
+        const RigidBody& box = world.bodies()[static_cast<std::size_t>(i)];
+        EXPECT_NEAR(box.position.z(), 8 + 16 * i, 1.0) << "box " << i;
+        EXPECT_LT(std::hypot(box.position.x(), box.position.y()), 0.5) << "box " << i;
+    }
+    EXPECT_LT(deepest, 0.5);
+    // A pivoting solve whose friction coupling does not settle falls back to PGS for that step;
+    // it must stay rare.
+    EXPECT_LT(world.solverFailures(), 600 / 50);
+}
+
+TEST(CollisionScene, BoxDroppedFromTwoThousandUnitsDoesNotTunnelThroughAThinFloor) {
+    World world(freeBox(Vec3(6, 6, 6), Vec3(0, 0, 2000)));
+    world.collision().addStatic(makeBox(Vec3(-200, -200, -8), Vec3(200, 200, 0)));
+    Real lowest = 1e30;
+    for (int i = 0; i < 480; ++i) {  // it lands at 830 units/s and bounces for a while
+        world.step();
+        lowest = std::min(lowest, lowestPoint(world, 0));
+    }
+    EXPECT_GT(lowest, -1.0) << "the box went into (or through) the 8-unit floor";
+    EXPECT_NEAR(world.bodies()[0].position.z(), 6, 1.0);
+}
+
+TEST(CollisionScene, HumanoidDroppedFromAHundredUnitsLandsWithoutPenetratingOrJittering) {
+    World world(humanoidAt(Vec3(0, 0, 100)));
+    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    Real deepest = 0, lowest = 1e30;
+    for (int i = 0; i < 240; ++i) {
+        world.step();
+        deepest = std::max(deepest, world.maxPenetration());
+        lowest = std::min(lowest, lowestPoint(world, 0));
+    }
+    EXPECT_LT(deepest, 1.0);
+    EXPECT_GT(lowest, -1.0);
+    EXPECT_LT(world.maxJointError(), 1e-3);
+    // Lying still: the kinetic energy of 150 mass units at 1 unit/s is 75.
+    Real energy = 0;
+    for (int i = 0; i < 60; ++i) {
+        world.step();
+        energy = std::max(energy, world.kineticEnergy());
+    }
+    EXPECT_LT(energy, 75) << "the figure jitters on the floor";
+}
+
+TEST(CollisionScene, TwoHumanoidsDroppedOntoEachOtherPileUp) {
+    WorldSettings settings;
+    settings.comeToRest = false;  // resting figures look for no contacts; this test wants to see them
+    settings.solver = SolverKind::Pgs;  // two touching figures make one dense island (see world_rest_test)
+    World world(settings);
+    world.addFigure(humanoidAt(Vec3(0, 0, 20), 0, 90));
+    world.addFigure(humanoidAt(Vec3(0, 0, 60), 0, 90));
+    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    Real deepest = 0;
+    for (int i = 0; i < 180; ++i) {
+        world.step();
+        deepest = std::max(deepest, world.maxPenetration());
+    }
+    EXPECT_LT(deepest, 1.0);
+    EXPECT_GT(centreHeight(world, 1), centreHeight(world, 0) + 3) << "the upper figure should lie on the lower one";
+    bool touching = false;
+    for (const BodyContact& c : world.contacts())
+        touching = touching || (c.bodyB != kStaticWorld && world.figureOf(c.bodyA) != world.figureOf(c.bodyB));
+    EXPECT_TRUE(touching);
+}
+
+}  // namespace
+}  // namespace af

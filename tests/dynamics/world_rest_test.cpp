@@ -1,0 +1,99 @@
+// Rest and wake of whole figures in a world with collision (world.h, rest.h).
+
+#include "af/geometry/shapes.h"
+#include "scene_test_util.h"
+
+namespace af {
+namespace {
+
+using test::freeBox;
+using test::humanoidAt;
+
+// Steps until every figure rests; returns the simulated time, or a negative value if `limit`
+// seconds were not enough.
+Real stepUntilRest(World& world, Real limit) {
+    while (world.time() < limit) {
+        world.step();
+        if (world.atRest()) return world.time();
+    }
+    return -1;
+}
+
+TEST(WorldRest, DroppedHumanoidRestsWithinFiveSecondsAndStaysAtRest) {
+    World world(humanoidAt(Vec3(0, 0, 40)));
+    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    const Real rest = stepUntilRest(world, 5);
+    ASSERT_GT(rest, 0) << "not at rest after 5 s";
+    const std::vector<RigidPose> atRest = world.bodyPoses();
+    for (int i = 0; i < 120; ++i) world.step();
+    EXPECT_TRUE(world.atRest());
+    const std::vector<RigidPose> later = world.bodyPoses();
+    for (std::size_t i = 0; i < later.size(); ++i) EXPECT_EQ(later[i].position, atRest[i].position) << "body " << i;
+    EXPECT_EQ(world.kineticEnergy(), 0);
+    EXPECT_EQ(world.lastStep().rows, 0) << "a resting figure costs no solver time";
+}
+
+TEST(WorldRest, ImpulseAboveTheThresholdWakesAndOneBelowIsIgnored) {
+    World world(freeBox(Vec3(8, 8, 8), Vec3(0, 0, 8), 0));  // on ice, so that the woken box slides
+    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    ASSERT_GT(stepUntilRest(world, 3), 0);
+    const Real threshold = world.settings().impulseThreshold;
+    world.applyImpulse(0, world.bodies()[0].position, Vec3(0.9 * threshold, 0, 0));
+    EXPECT_TRUE(world.figureAtRest(0));
+    EXPECT_EQ(world.bodies()[0].linearVelocity.norm(), 0);
+    world.applyImpulse(0, world.bodies()[0].position, Vec3(1.1 * threshold, 0, 0));
+    EXPECT_FALSE(world.figureAtRest(0));
+    const Real mass = world.bodies()[0].mass();
+    EXPECT_NEAR(world.bodies()[0].linearVelocity.x(), 1.1 * threshold / mass, 1e-9);
+    world.step();
+    EXPECT_GT(world.bodies()[0].position.x(), 0.1) << "the woken box slides";
+}
+
+TEST(WorldRest, FigureAtTheTopOfItsArcStaysAwake) {
+    World world(freeBox(Vec3(8, 8, 8), Vec3(0, 0, 8)));
+    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    world.bodies()[0].linearVelocity = Vec3(0, 0, 400);  // apex after 0.375 s
+    Real firstRest = -1;
+    for (int i = 0; i < 300 && firstRest < 0; ++i) {
+        world.step();
+        if (world.atRest()) firstRest = world.time();
+    }
+    ASSERT_GT(firstRest, 0);
+    EXPECT_GT(firstRest, 0.75) << "it fell asleep in the air";
+    EXPECT_LT(world.bodies()[0].position.z(), 9);
+}
+
+TEST(WorldRest, RemovingTheFloorWakesWhatLayOnIt) {
+    World world(freeBox(Vec3(8, 8, 8), Vec3(0, 0, 8)));
+    const int floor = world.collision().addStatic(makeBox(Vec3(-50, -50, -8), Vec3(50, 50, 0)));
+    ASSERT_GT(stepUntilRest(world, 3), 0);
+    world.removeStatic(floor);
+    EXPECT_FALSE(world.atRest());
+    for (int i = 0; i < 30; ++i) world.step();
+    EXPECT_LT(world.bodies()[0].position.z(), 0) << "with the floor gone the box falls";
+}
+
+TEST(WorldRest, PileOfHumanoidsSleepsAsOneIslandAndWakesWhenOneIsPushed) {
+    // PGS: the pile is one island of about a thousand rows, which the pivoting solver takes
+    // minutes over (a dense problem; see the tree solver).
+    WorldSettings settings;
+    settings.solver = SolverKind::Pgs;
+    World world(settings);
+    for (int i = 0; i < 4; ++i) world.addFigure(humanoidAt(Vec3(0, 0, 20 + 30 * i), 0, 90));
+    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    const Real rest = stepUntilRest(world, 10);
+    ASSERT_GT(rest, 0) << "the pile never slept";
+    for (int f = 0; f < 4; ++f) EXPECT_TRUE(world.figureAtRest(f));
+
+    // Push the top figure hard: it wakes, and so does every figure it touches when it moves.
+    const World::FigureRange top = world.figures()[3];
+    world.applyImpulse(top.firstBody, world.bodies()[static_cast<std::size_t>(top.firstBody)].position, Vec3(0, 0, -5000));
+    EXPECT_FALSE(world.figureAtRest(3));
+    world.step();
+    int awake = 0;
+    for (int f = 0; f < 4; ++f) awake += world.figureAtRest(f) ? 0 : 1;
+    EXPECT_GE(awake, 2) << "the pushed figure must wake the figures it presses on";
+}
+
+}  // namespace
+}  // namespace af
