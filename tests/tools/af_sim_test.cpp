@@ -1,0 +1,118 @@
+// af-sim run as a user runs it: the summary, its JSON keys, pictures, the baked animation, and
+// clear failures on bad input.
+
+#include "af/text/md5.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct SimRun {
+    int status = -1;
+    std::string out;
+};
+
+SimRun afSim(const std::string& arguments) {
+    SimRun run;
+    const std::string command = std::string(AF_SIM_PATH) + " " + arguments + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return run;
+    std::array<char, 4096> buffer{};
+    while (std::fgets(buffer.data(), buffer.size(), pipe)) run.out += buffer.data();
+    const int status = pclose(pipe);
+    run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+std::filesystem::path scratch(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "af_sim_test";
+    std::filesystem::create_directories(dir);
+    return dir / name;
+}
+
+TEST(AfSim, DefaultRunDropsTheHumanoidOntoTheDefaultMapAndItRestsWithinFiveSeconds) {
+    const SimRun run = afSim("--json");
+    ASSERT_EQ(run.status, 0) << run.out;
+    const nlohmann::json j = nlohmann::json::parse(run.out);
+    for (const char* key : {"rest_time_s", "steps", "wall_s", "us_per_step", "max_joint_error", "max_penetration",
+                            "max_limit_violation_deg", "final_kinetic_energy", "solver_failures", "nan_detected", "bodies"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    ASSERT_TRUE(j["rest_time_s"].is_number()) << "the humanoid never came to rest";
+    EXPECT_LT(j["rest_time_s"].get<double>(), 5.0);
+    EXPECT_FALSE(j["nan_detected"].get<bool>());
+    EXPECT_EQ(j["final_kinetic_energy"].get<double>(), 0.0) << "a resting figure has no velocity";
+    EXPECT_LT(j["max_joint_error"].get<double>(), 1e-3);
+    EXPECT_LT(j["max_penetration"].get<double>(), 1.0);
+    ASSERT_EQ(j["bodies"].size(), 16u);
+    double mass = 0;
+    for (const auto& b : j["bodies"]) {
+        mass += b["mass"].get<double>();
+        EXPECT_GT(b["position"][2].get<double>(), -1.0) << b["name"] << " ended below the floor";
+        EXPECT_LT(b["position"][2].get<double>(), 40.0) << b["name"] << " did not come down";
+    }
+    EXPECT_NEAR(mass, 150, 1e-6) << "humanoid.af's totalMass";
+}
+
+TEST(AfSim, PicturesAndTheBakedAnimationAreWrittenAndTheAnimationReadsBack) {
+    const std::filesystem::path png = scratch("final.png"), plot = scratch("plot.png"), anim = scratch("fall.md5anim"),
+                                lines = scratch("trajectory.jsonl");
+    for (const auto& p : {png, plot, anim, lines}) std::filesystem::remove(p);
+    const SimRun run = afSim("--no-map --seconds 2 --png " + png.string() + " --plot " + plot.string() + " --md5anim " +
+                          anim.string() + " --trajectory " + lines.string() + " --json");
+    ASSERT_EQ(run.status, 0) << run.out;
+    const nlohmann::json j = nlohmann::json::parse(run.out);
+    EXPECT_GT(std::filesystem::file_size(png), 10000u);
+    EXPECT_GT(std::filesystem::file_size(plot), 5000u);
+
+    std::ifstream file(anim);
+    std::stringstream text;
+    text << file.rdbuf();
+    const af::Md5AnimParseResult parsed = af::parseMd5Anim(text.str(), anim.string());
+    ASSERT_TRUE(parsed.ok()) << parsed.diagnostics.formatAll();
+    EXPECT_EQ(parsed.anim.frameCount, j["steps"].get<int>()) << "one frame per step";
+    EXPECT_EQ(parsed.anim.frameRate, 60);
+    ASSERT_EQ(parsed.anim.joints.size(), 25u);
+    EXPECT_EQ(parsed.anim.joints[0].name, "origin");
+    EXPECT_EQ(parsed.anim.joints[1].name, "pelvis");
+
+    std::ifstream trajectory(lines);
+    int count = 0;
+    for (std::string line; std::getline(trajectory, line); ++count)
+        EXPECT_EQ(nlohmann::json::parse(line)["bodies"].size(), 16u);
+    EXPECT_EQ(count, j["steps"].get<int>());
+}
+
+TEST(AfSim, TwoRunsWithTheSameSeedGiveTheSameSummary) {
+    const SimRun a = afSim("--no-map --seconds 1 --seed 7 --json");
+    const SimRun b = afSim("--no-map --seconds 1 --seed 7 --json");
+    ASSERT_EQ(a.status, 0) << a.out;
+    nlohmann::json ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+    EXPECT_EQ(ja["bodies"], jb["bodies"]);
+    const SimRun c = afSim("--no-map --seconds 1 --seed 8 --json");
+    EXPECT_NE(ja["bodies"], nlohmann::json::parse(c.out)["bodies"]) << "the seed must change the push";
+}
+
+TEST(AfSim, BadInputGetsAClearMessageAndANonzeroStatus) {
+    const SimRun entity = afSim("--entity no_such_entity");
+    EXPECT_NE(entity.status, 0);
+    EXPECT_NE(entity.out.find("no_such_entity"), std::string::npos) << entity.out;
+
+    const std::filesystem::path broken = scratch("broken.map");
+    std::ofstream(broken) << "Version 2\n{\n\"classname\" \"worldspawn\"\n{\n brushDef3\n {\n  ( 0 0 1 0 ) ( ( 1 0 0 ) ( 0 1 0 ) ) \"m\" 0 0 0\n";
+    const SimRun map = afSim("--map " + broken.string());
+    EXPECT_NE(map.status, 0);
+    EXPECT_NE(map.out.find("broken.map:"), std::string::npos) << map.out;
+
+    const SimRun count = afSim("--count 0");
+    EXPECT_NE(count.status, 0);
+}
+
+}  // namespace

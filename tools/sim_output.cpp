@@ -1,0 +1,132 @@
+#include "sim_output.h"
+
+#include <cstdio>
+
+namespace af::sim {
+
+namespace {
+
+std::string fixed(Real value, int decimals) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+    return buffer;
+}
+
+std::string general(Real value) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.3g", value);
+    return buffer;
+}
+
+Real microsecondsPerStep(const RunResult& r) { return r.steps > 0 ? 1e6 * r.wallSeconds / r.steps : 0; }
+
+// The figure body behind world body i, in the order the scene added them.
+const FigureBody& figureBody(const Scene& scene, std::size_t worldBody) {
+    for (std::size_t f = 0; f < scene.figures.size(); ++f) {
+        const World::FigureRange& r = scene.world.figures()[f];
+        if (static_cast<int>(worldBody) < r.firstBody + r.bodyCount)
+            return scene.figures[f].bodies[worldBody - static_cast<std::size_t>(r.firstBody)];
+    }
+    return scene.figures.back().bodies.back();
+}
+
+std::string bodyName(const Scene& scene, std::size_t worldBody) {
+    const std::string& name = figureBody(scene, worldBody).name;
+    if (scene.figures.size() == 1) return name;
+    return name + "#" + std::to_string(scene.world.figureOf(static_cast<int>(worldBody)));
+}
+
+}  // namespace
+
+std::string summaryText(const Scene& scene, const RunResult& r) {
+    std::string out = "af-sim: " + scene.description + "\n";
+    out += r.restTime ? "  at rest after       " + fixed(*r.restTime, 2) + " s simulated\n"
+                      : "  not at rest after   " + fixed(r.simulatedSeconds, 2) + " s simulated (time limit)\n";
+    out += "  steps               " + std::to_string(r.steps) + " of " + fixed(scene.world.settings().timeStep * 1000, 2) +
+           " ms\n";
+    out += "  wall time           " + fixed(r.wallSeconds, 3) + " s, " + fixed(microsecondsPerStep(r), 1) + " us per step\n";
+    out += "  max joint error     " + general(r.maxJointError) + " units\n";
+    out += "  max penetration     " + general(r.maxPenetration) + " units\n";
+    out += "  max limit violation " + general(r.maxLimitViolationDeg) + " deg\n";
+    out += "  final kinetic energy " + general(r.finalKineticEnergy) + "\n";
+    out += "  solver failures     " + std::to_string(r.solverFailures) + "\n";
+    if (r.nanDetected) out += "  NaN detected: the simulation blew up and was stopped\n";
+    return out;
+}
+
+nlohmann::ordered_json summaryJson(const Scene& scene, const RunResult& r) {
+    nlohmann::ordered_json j;
+    j["scene"] = scene.description;
+    j["rest_time_s"] = r.restTime ? nlohmann::ordered_json(*r.restTime) : nlohmann::ordered_json(nullptr);
+    j["simulated_s"] = r.simulatedSeconds;
+    j["steps"] = r.steps;
+    j["wall_s"] = r.wallSeconds;
+    j["us_per_step"] = microsecondsPerStep(r);
+    j["max_joint_error"] = r.maxJointError;
+    j["max_penetration"] = r.maxPenetration;
+    j["max_limit_violation_deg"] = r.maxLimitViolationDeg;
+    j["final_kinetic_energy"] = r.finalKineticEnergy;
+    j["solver_failures"] = r.solverFailures;
+    j["nan_detected"] = r.nanDetected;
+    nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < scene.world.bodies().size(); ++i) {
+        const RigidBody& b = scene.world.bodies()[i];
+        bodies.push_back({{"name", bodyName(scene, i)},
+                          {"figure", scene.world.figureOf(static_cast<int>(i))},
+                          {"mass", b.mass()},
+                          {"position", {b.position.x(), b.position.y(), b.position.z()}}});
+    }
+    j["bodies"] = bodies;
+    return j;
+}
+
+render::RenderScene renderScene(const Scene& scene, const std::vector<RigidPose>& poses) {
+    render::RenderScene out;
+    for (std::size_t i = 0; i < poses.size(); ++i) out.bodies.push_back({figureBody(scene, i).shape, poses[i], {}});
+    for (const Polytope& p : scene.statics) out.statics.push_back({p, RigidPose{}, {}});
+    out.floorZ = scene.floorZ;
+    return out;
+}
+
+void writeFinalPng(const Scene& scene, const std::string& path) {
+    const render::RenderScene picture = renderScene(scene, scene.world.bodyPoses());
+    render::writePng(picture, render::fitCamera(picture, 4.0 / 3.0), 1024, 768, path);
+}
+
+void writeFramesPng(const Scene& scene, const RunResult& r, const std::string& path) {
+    std::vector<render::RenderScene> frames;
+    std::vector<std::string> labels;
+    for (std::size_t i = 0; i < r.frames.size(); ++i) {
+        frames.push_back(renderScene(scene, r.frames[i]));
+        labels.push_back("t = " + fixed(r.frameTimes[i], 2) + " s");
+    }
+    render::writeContactSheet(frames, labels, 4, path);
+}
+
+void writePlotPng(const Scene& scene, const RunResult& r, const std::string& path) {
+    render::PlotData data;
+    for (const Sample& s : r.history) {
+        data.time.push_back(s.time);
+        data.kineticEnergy.push_back(s.kineticEnergy);
+        data.maxJointError.push_back(s.maxJointError);
+    }
+    data.restTime = r.restTime;
+    data.title = scene.description;
+    render::writePlot(data, path);
+}
+
+void writeTrajectoryLine(const Scene& scene, const World& world, std::ostream& out) {
+    nlohmann::ordered_json line;
+    line["t"] = world.time();
+    nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+        const RigidBody& b = world.bodies()[i];
+        bodies.push_back({{"name", bodyName(scene, i)},
+                          {"p", {b.position.x(), b.position.y(), b.position.z()}},
+                          {"q", {b.orientation.x(), b.orientation.y(), b.orientation.z(), b.orientation.w()}}});
+    }
+    line["bodies"] = bodies;
+    out << line.dump() << '\n';
+}
+
+}  // namespace af::sim

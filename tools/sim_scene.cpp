@@ -1,0 +1,129 @@
+#include "sim_scene.h"
+
+#include "af/geometry/brush.h"
+#include "af/text/map_file.h"
+#include "af/text/resource_index.h"
+#include "figure_report.h"
+
+#include <algorithm>
+#include <limits>
+#include <numbers>
+#include <random>
+
+namespace af::sim {
+
+namespace {
+
+constexpr Real kPileSpacing = 24;  // units between one figure's top and the next one's bottom
+constexpr Real kTiltDegrees = 15;  // forward lean at spawn, so that a standing figure falls over
+
+// Every worldspawn brush becomes a static convex shape; a brush that encloses nothing is an error
+// that names its place in the file.
+void addMapStatics(const std::filesystem::path& path, Scene& scene) {
+    const MapParseResult parsed = loadMapFile(path.string());
+    if (!parsed.ok()) throw SceneError(parsed.diagnostics.formatAll());
+    const MapEntity* world = parsed.map.worldspawn();
+    if (!world) throw SceneError(path.string() + ": error: the map has no worldspawn entity");
+    for (const MapPrimitive& primitive : world->primitives) {
+        const BrushDef3* brush = primitive.brush();
+        if (!brush) continue;
+        const BrushPolytope solid = polytopeFromBrush(*brush);
+        if (!solid.ok())
+            throw SceneError(path.string() + ":" + std::to_string(primitive.where.line) + ":" +
+                             std::to_string(primitive.where.column) + ": error: " + solid.message);
+        scene.world.collision().addStatic(*solid.polytope);
+        scene.statics.push_back(*solid.polytope);
+    }
+    if (scene.statics.empty()) throw SceneError(path.string() + ": error: the worldspawn has no brushes to stand on");
+}
+
+// Height of the ground under (x, y): the highest static top there, or the floor.
+Real groundHeight(const Scene& scene, Real x, Real y) {
+    Real ground = scene.floorZ.value_or(-std::numeric_limits<Real>::infinity());
+    for (const Polytope& p : scene.statics) {
+        Vec3 lo = Vec3::Constant(std::numeric_limits<Real>::infinity()), hi = -lo;
+        for (const Vec3& v : p.vertices) {
+            lo = lo.cwiseMin(v);
+            hi = hi.cwiseMax(v);
+        }
+        if (lo.x() <= x && x <= hi.x() && lo.y() <= y && y <= hi.y()) ground = std::max(ground, hi.z());
+    }
+    if (!std::isfinite(ground)) throw SceneError("nothing to drop the figures on at (0, 0): the map has no brush there");
+    return ground;
+}
+
+Real lowestPoint(const Figure& figure) {
+    Real lowest = std::numeric_limits<Real>::infinity();
+    for (const FigureBody& b : figure.bodies)
+        for (const Vec3& v : b.shape.vertices) lowest = std::min(lowest, b.pose.apply(v).z());
+    return lowest;
+}
+
+Real highestPoint(const Figure& figure) {
+    Real highest = -std::numeric_limits<Real>::infinity();
+    for (const FigureBody& b : figure.bodies)
+        for (const Vec3& v : b.shape.vertices) highest = std::max(highest, b.pose.apply(v).z());
+    return highest;
+}
+
+// A rigid push: the same linear and angular velocity for every body, about the figure's centre.
+void push(World& world, int figure, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<Real> speed(-60, 60), spin(-1.5, 1.5);
+    const Vec3 v(speed(rng), speed(rng), 0);
+    const Vec3 w(spin(rng), spin(rng), spin(rng));
+    const World::FigureRange r = world.figures()[static_cast<std::size_t>(figure)];
+    Vec3 centre = Vec3::Zero();
+    Real mass = 0;
+    for (int i = r.firstBody; i < r.firstBody + r.bodyCount; ++i) {
+        const RigidBody& b = world.bodies()[static_cast<std::size_t>(i)];
+        centre += b.mass() * b.position;
+        mass += b.mass();
+    }
+    centre /= mass;
+    for (int i = r.firstBody; i < r.firstBody + r.bodyCount; ++i) {
+        RigidBody& b = world.bodies()[static_cast<std::size_t>(i)];
+        b.linearVelocity = v + w.cross(b.position - centre);
+        b.angularVelocity = w;
+    }
+}
+
+}  // namespace
+
+Scene buildScene(const SceneOptions& options) {
+    if (options.count < 1) throw SceneError("--count must be at least 1");
+    const ResourceIndex index(options.roots);
+    const AFResources resources =
+        options.figure.empty() ? index.resolveAFEntity(options.entity) : index.resolveFigure(options.figure);
+    if (!resources.ok()) throw SceneError(resources.formatDiagnostics());
+    const Skeleton afPose = afPoseOf(resources);
+
+    Scene scene{World(options.world), {}, {}, {}, {}};
+    if (options.map.empty()) {
+        scene.world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+        scene.floorZ = 0;
+    } else {
+        addMapStatics(options.map, scene);
+    }
+    Real bottom = groundHeight(scene, 0, 0) + options.dropHeight;
+    for (int i = 0; i < options.count; ++i) {
+        RigidPose placement;
+        placement.rotation = Eigen::AngleAxis<Real>(i * 0.5 * std::numbers::pi_v<Real>, Vec3::UnitZ()).toRotationMatrix() *
+                             rotationFromAngles(kTiltDegrees, 0, 0);
+        FigureResult built = buildFigure(resources.figure->decl, afPose, resources.figure->file, placement);
+        if (!built.ok()) throw SceneError(built.formatDiagnostics());
+        placement.position.z() = bottom - lowestPoint(*built.figure);
+        built = buildFigure(resources.figure->decl, afPose, resources.figure->file, placement);
+        const Figure& figure = *built.figure;
+        bottom = highestPoint(figure) + kPileSpacing;
+        const int number = scene.world.addFigure(figure);
+        if (options.seed) push(scene.world, number, *options.seed + static_cast<unsigned>(i));
+        scene.figures.push_back(figure);
+    }
+    const std::string what = options.figure.empty() ? "entity " + options.entity : "figure " + options.figure;
+    scene.description = what + (options.count > 1 ? " x" + std::to_string(options.count) : "") + " on " +
+                        (options.map.empty() ? std::string("an infinite floor") : options.map.string());
+    return scene;
+}
+
+}  // namespace af::sim

@@ -1,0 +1,42 @@
+#pragma once
+// af-sim's scene: figures spawned from an entityDef or a bare .af decl, dropped above a world
+// built from a .map (or an infinite floor), ready to step.
+
+#include "af/dynamics/world.h"
+#include "af/figure/figure.h"
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace af::sim {
+
+// Bad input (an unknown entity, a broken .map): the message says what and where.
+struct SceneError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct SceneOptions {
+    std::string entity = "ragdoll_humanoid";  // an entityDef with an `articulatedFigure`
+    std::string figure;                       // or a bare .af decl (with its settings' model)
+    std::vector<std::filesystem::path> roots; // lowest priority first
+    std::filesystem::path map;                // empty: an infinite floor at z = 0
+    int count = 1;                            // figures dropped in a pile
+    std::optional<unsigned> seed;             // a small deterministic push per figure
+    Real dropHeight = 32;                     // units between the floor and the figure's lowest point
+    WorldSettings world;
+};
+
+struct Scene {
+    World world;
+    std::vector<Figure> figures;  // as spawned; figure i is the world's figure i
+    std::vector<Polytope> statics;  // world space: the map's brushes
+    std::optional<Real> floorZ;  // the infinite floor, when there is no map
+    std::string description;     // what was loaded, for the summary
+};
+
+Scene buildScene(const SceneOptions& options);
+
+}  // namespace af::sim
