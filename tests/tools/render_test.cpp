@@ -152,6 +152,80 @@ TEST(Render, BodyOnAFloorBrushIsNotHiddenByTheBrushWhoseCentreIsNearer) {
     EXPECT_LT(image.at(200, 295).distance(image.at(200, 5)), 0.05) << "grey brush, not sky, at top and bottom";
 }
 
+// maps/default.map's floor brush (1024 wide, top at z = 0) and its two stacked steps at +X.
+std::vector<RenderShape> defaultMapBrushes() {
+    std::vector<RenderShape> brushes(3);
+    brushes[0].shape = af::makeBox(Vec3(-512, -512, -16), Vec3(512, 512, 0));
+    brushes[1].shape = af::makeBox(Vec3(64, -64, 0), Vec3(192, 64, 32));
+    brushes[2].shape = af::makeBox(Vec3(128, -64, 32), Vec3(192, 64, 64));
+    return brushes;
+}
+
+bool staticGrey(const Rgb& c) {
+    return c.luminance() < 0.75 && std::max({c.r, c.g, c.b}) - std::min({c.r, c.g, c.b}) < 0.08;
+}
+
+TEST(Render, BodyBesideAStepOnAFloorBrushIsInFullViewOfTheFittedCamera) {
+    // The default 3/4 view of this body looks at it across the step: fitted to the body alone,
+    // the eye lands inside the step brush and the picture is all grey.
+    RenderScene scene;
+    scene.bodies.push_back(box(Vec3(40, 0, 8), 8, kRed));
+    scene.bodies.push_back(box(Vec3(20, 10, 4), 4, kBlue));
+    scene.statics = defaultMapBrushes();
+    const Camera camera = fitCamera(scene);
+    const TempPng path("step");
+    writePng(scene, camera, 400, 300, path);
+    const Image image = readPng(path);
+    const af::render::detail::Projector projector(camera, 400, 300);
+    const auto pixelOf = [&](const Vec3& p) {
+        const auto px = projector.toPixels(projector.toView(p));
+        EXPECT_TRUE(px.x() >= 0 && px.x() < 400 && px.y() >= 0 && px.y() < 300) << px.transpose();
+        return image.at(std::clamp(static_cast<int>(px.x()), 0, 399), std::clamp(static_cast<int>(px.y()), 0, 299));
+    };
+    EXPECT_TRUE(reddish(pixelOf(Vec3(40, 0, 8))));
+    EXPECT_TRUE(bluish(pixelOf(Vec3(20, 10, 4))));
+    int red = 0, grey = 0;
+    for (const Rgb& c : image.pixels) {
+        red += reddish(c);
+        grey += staticGrey(c);
+    }
+    EXPECT_GT(red, 0.02 * 400 * 300) << "framed, not lost in the distance";
+    EXPECT_GT(grey, 0.2 * 400 * 300) << "the floor brush around the bodies";
+}
+
+TEST(Render, FloorBrushUnderTheBodiesIsFramedLikeTheInfiniteFloor) {
+    RenderScene onPlane;
+    onPlane.bodies.push_back(box(Vec3(0, 0, 8), 8, kRed));
+    onPlane.bodies.push_back(box(Vec3(30, -10, 4), 4, kBlue));
+    onPlane.floorZ = 0;
+    RenderScene onBrush = onPlane;
+    onBrush.floorZ.reset();
+    onBrush.statics.push_back(defaultMapBrushes().front());
+    const Camera a = fitCamera(onPlane), b = fitCamera(onBrush);
+    EXPECT_LT((a.eye - b.eye).norm(), 1e-9);
+    EXPECT_LT((a.target - b.target).norm(), 1e-9);
+}
+
+TEST(Render, BodyAboveAFloorBrushCastsAShadowOnIt) {
+    RenderScene scene;
+    scene.bodies.push_back(box(Vec3(0, 0, 30), 8, kRed));
+    scene.statics.push_back(defaultMapBrushes().front());
+    const Camera camera = frontCamera();
+    const TempPng path("brush_shadow");
+    writePng(scene, camera, 400, 300, path);
+    const Image image = readPng(path);
+    const af::render::detail::Projector projector(camera, 400, 300);
+    const auto pixelOf = [&](const Vec3& p) {
+        const auto px = projector.toPixels(projector.toView(p));
+        return image.at(static_cast<int>(px.x()), static_cast<int>(px.y()));
+    };
+    // Neither floor point is behind the box from this eye; only the first is under it.
+    const Rgb under = pixelOf(Vec3(0, 0, 0)), beside = pixelOf(Vec3(0, 40, 0));
+    ASSERT_TRUE(staticGrey(beside));
+    EXPECT_LT(under.luminance(), beside.luminance() - 0.05);
+    EXPECT_LT(under.distance(beside), 0.5) << "darkened floor, not the body";
+}
+
 TEST(Render, TopFaceIsShadedDifferentlyFromSideFace) {
     RenderScene scene;
     scene.bodies.push_back(box(Vec3::Zero(), 20, kRed));

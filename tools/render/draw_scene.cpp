@@ -147,17 +147,28 @@ std::vector<Vec2> hull2d(std::vector<Vec2> p) {
     return h;
 }
 
-// Shadows straight down onto the floor: they tell how high each body is above it.
-void drawShadows(cairo_t* cr, const Projector& proj, std::span<const Polytope> bodies, double floorZ) {
+// The outline on the non-vertical plane normal · p = offset of the shadow cast straight down
+// by the part of `body` above that plane; empty when nothing of it is above.
+std::vector<Vec3> shadowOutline(const Polytope& body, const Vec3& normal, double offset) {
+    std::vector<Vec2> footprint;
+    for (const Vec3& v : body.vertices)
+        if (normal.dot(v) >= offset) footprint.emplace_back(v.x(), v.y());
+    std::vector<Vec3> outline;
+    if (footprint.size() < 3) return outline;
+    for (const Vec2& p : hull2d(footprint))
+        outline.emplace_back(p.x(), p.y(), (offset - normal.x() * p.x() - normal.y() * p.y()) / normal.z());
+    return outline;
+}
+
+// Shadows straight down onto a floor or a brush's upward face: they tell how high each body is
+// above it. The caller clips to the face.
+void drawShadows(cairo_t* cr, const Projector& proj, std::span<const Polytope> bodies, const Vec3& normal,
+                 double offset) {
     cairo_push_group(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
     for (const Polytope& body : bodies) {
-        std::vector<Vec2> footprint;
-        for (const Vec3& v : body.vertices)
-            if (v.z() >= floorZ) footprint.emplace_back(v.x(), v.y());
-        if (footprint.size() < 3) continue;
-        std::vector<Vec3> outline;
-        for (const Vec2& p : hull2d(footprint)) outline.emplace_back(p.x(), p.y(), floorZ);
+        const std::vector<Vec3> outline = shadowOutline(body, normal, offset);
+        if (outline.empty()) continue;
         tracePolygon(cr, projectPolygon(proj, outline));
         cairo_fill(cr);
     }
@@ -169,7 +180,12 @@ bool facesEye(const Polytope& p, const Face& f, const Vec3& eye) {
     return f.normal.squaredNorm() > 0.5 && f.normal.dot(eye - p.vertices[f.loop.front()]) > 0;
 }
 
-void drawPolytope(cairo_t* cr, const Projector& proj, const Polytope& p, const Colour& colour, double lineScale) {
+// A face at most this steep (normal.z ≥ the value) takes shadows: floors, step tops, ramps.
+constexpr double kShadowedFaceMinNormalZ = 0.5;
+
+// `shadowCasters`: bodies whose shadows fall on this polytope's upward faces (none for a body).
+void drawPolytope(cairo_t* cr, const Projector& proj, const Polytope& p, const Colour& colour, double lineScale,
+                  std::span<const Polytope> shadowCasters = {}) {
     std::vector<char> front(p.faces.size());
     std::vector<Vec3> world;
     for (size_t f = 0; f < p.faces.size(); ++f) {
@@ -178,12 +194,20 @@ void drawPolytope(cairo_t* cr, const Projector& proj, const Polytope& p, const C
         if (!front[f]) continue;
         world.clear();
         for (int i : face.loop) world.push_back(p.vertices[i]);
-        tracePolygon(cr, projectPolygon(proj, world));
+        const std::vector<Vec2> pixels = projectPolygon(proj, world);
+        tracePolygon(cr, pixels);
         setColour(cr, scaled(colour, brightness(face.normal)));
         // A hairline in the fill colour closes the antialiasing seams between adjacent faces.
         cairo_fill_preserve(cr);
         cairo_set_line_width(cr, 0.6 * lineScale);
         cairo_stroke(cr);
+        if (!shadowCasters.empty() && face.normal.z() >= kShadowedFaceMinNormalZ) {
+            cairo_save(cr);
+            tracePolygon(cr, pixels);
+            cairo_clip(cr);
+            drawShadows(cr, proj, shadowCasters, face.normal, face.offset);
+            cairo_restore(cr);
+        }
     }
     // Outline the visible edges; an edge between a visible and a hidden face is on the silhouette.
     std::map<std::pair<int, int>, std::array<int, 2>> edgeFaces;
@@ -248,16 +272,21 @@ void drawScene(cairo_t* cr, const RenderScene& scene, const Camera& camera, doub
         colours.push_back(s.colour.value_or(kStaticColour));
     }
 
+    const std::span<const Polytope> bodies(shapes.data(), bodyCount);
     // The floor plane is behind everything above it, so it goes first; seen from below it is hidden.
     if (scene.floorZ && camera.eye.z() > *scene.floorZ) {
         drawFloor(cr, proj, camera, *scene.floorZ);
-        drawShadows(cr, proj, std::span<const Polytope>(shapes.data(), bodyCount), *scene.floorZ);
+        drawShadows(cr, proj, bodies, Vec3::UnitZ(), *scene.floorZ);
     }
 
     std::vector<DepthItem> items;
     for (const Polytope& p : shapes) items.push_back({&p, screenBox(proj, p)});
     const double lineScale = std::max(0.75, height / 480);
-    for (int i : depthOrder(items, camera.eye)) drawPolytope(cr, proj, shapes[i], colours[i], lineScale);
+    // A static's shadows go on right after it, so that whatever is drawn later covers them too.
+    for (int i : depthOrder(items, camera.eye)) {
+        const bool isStatic = static_cast<size_t>(i) >= bodyCount;
+        drawPolytope(cr, proj, shapes[i], colours[i], lineScale, isStatic ? bodies : std::span<const Polytope>{});
+    }
     cairo_restore(cr);
 }
 

@@ -42,16 +42,22 @@ struct Camera {
 /// The palette colour of body `index` (cycles through distinct hues).
 Colour bodyColour(int index);
 
-/// A 3/4 view from above and to the front-right (Doom's +X is forward, +Y left) that frames every
-/// body and a margin of floor around them. Without bodies it frames the statics. `aspect` is the
-/// image's width / height.
+/// A 3/4 view from above that frames every body and a margin around them of the floor and of the
+/// statics' faces turned to the camera (only that margin of a brush: a floor brush may be
+/// thousands of units wide). The view is from the front-right (Doom's +X is forward, +Y left)
+/// unless statics stand between that eye and the bodies (a step next to a lying figure); then it
+/// is the first of a fixed list of other directions (left, steeper, far side, from above) whose eye
+/// the statics hide the fewest body points from. Without bodies it frames the statics.
+/// `aspect` is the image's width / height.
 Camera fitCamera(const RenderScene& scene, double aspect = 4.0 / 3.0);
 
-/// One camera framing the bodies of all `frames`, so that motion between them is visible.
+/// One camera framing the bodies of all `frames`, so that motion between them is visible; the
+/// statics of every frame count as in fitCamera above.
 Camera fitCamera(const std::vector<RenderScene>& frames, double aspect = 4.0 / 3.0);
 
 /// Renders `scene` and writes it as a width × height PNG. Bodies and statics are convex hulls,
 /// Lambert-shaded from a fixed light, outlined, drawn back to front with back faces culled.
+/// Bodies cast shadows straight down onto the floor and onto the statics' upward faces.
 /// Throws std::invalid_argument for a non-positive size, std::runtime_error naming the path
 /// when the file cannot be written.
 void writePng(const RenderScene& scene, const Camera& camera, int width, int height, const std::string& path);
