@@ -1,0 +1,105 @@
+#pragma once
+// The fast path of the constraint solve: a figure's joint tree factorised in time linear in the
+// number of bodies (Baraff 1996, doom3-af-spec.md §4.4), and every other row solved as a boxed
+// LCP on the small Schur complement that the tree leaves (§4.5), warm-started from the previous
+// solve. It gives the same impulses as the dense path (RowSystem + LcpExactSolver) on the same
+// rows, up to rounding.
+//
+// Primary rows (§4.2, as a spanning forest rather than Doom's body1-has-no-parent rule): joints
+// are taken in their order; a joint is primary when it has equality rows (not a spring) and joins
+// two parts of the figure not yet joined, where the world (and any static body) is one part. So
+// the first joint to the world roots its body's tree, and a joint that would close a loop, a
+// second path to the world included, stays auxiliary with all its rows. Only the equality rows of
+// primary joints are primary; limit, joint friction and contact rows (every row after the joints'
+// rows) are auxiliary.
+//
+// Primary rows keep the CFM they carry (Doom gives them none), so the answer is the dense one.
+//
+// Units and frames are those of the rows (af/dynamics/constraint_row.h): world frame, impulses
+// in mass·length/s for the velocity problem, mass·length for the position problem.
+//
+// Use, per step:  setStructure once per figure (and when its joints change); then at every pose
+// factor(rows at that pose), then solveVelocity and/or solvePosition as often as needed, then
+// applyImpulses or applyDisplacements. No heap allocation once the largest row count has been
+// seen (buffers keep their capacity). Not thread-safe; one solver per figure or thread.
+
+#include "af/dynamics/constraint_row.h"
+#include "af/dynamics/joints.h"
+#include "af/dynamics/lcp.h"
+#include "af/dynamics/rigid_body.h"
+
+#include <memory>
+#include <span>
+
+namespace af {
+
+struct TreeSolveResult {
+    LcpStatus status = LcpStatus::Solved;  ///< of the auxiliary LCP; InvalidInput for rows that do
+                                           ///< not fit the structure, Unsatisfiable if a tree block
+                                           ///< could not be factorised (no CFM on dependent rows)
+    int  primaryRows = 0;
+    int  auxiliaryRows = 0;                ///< the size of the LCP (rows left out are neither)
+    int  pivots = 0;                       ///< LcpResult::pivots of the auxiliary LCP
+    int  couplingPasses = 0;
+    Real residual = 0;                     ///< natural residual of the auxiliary LCP (lcp.h)
+};
+
+/// Which problems a factorisation serves. The position problem holds friction rows at 0, so a
+/// factorisation for it alone leaves them (and any row with lo = hi = 0) out of the Schur
+/// complement: a smaller LCP, and their λ is 0.
+enum class TreeProblems { VelocityAndPosition, PositionOnly };
+
+class TreeSolver {
+public:
+    explicit TreeSolver(const LcpExactSettings& settings = {});
+    ~TreeSolver();
+    TreeSolver(TreeSolver&&) noexcept;
+    TreeSolver& operator=(TreeSolver&&) noexcept;
+
+    void setSettings(const LcpExactSettings& settings);
+
+    /// Chooses the primary joints and orders the tree. `bodies` decides which bodies are static
+    /// (inverseMass 0, treated as the world); joints' body indices refer to it. Throws
+    /// std::invalid_argument for a body index out of range.
+    void setStructure(std::span<const RigidBody> bodies, std::span<const Joint> joints);
+    /// Whether joint k's equality rows are primary.
+    bool isPrimary(int joint) const;
+    /// Forgets the row states of the last solves, so the next ones start cold (after a teleport,
+    /// or to measure).
+    void resetWarmStart();
+
+    /// Factorises the primary rows and forms the Schur complement of the others at the bodies'
+    /// current poses. `ranges[k]` says where joint k's rows are in `rows` (writeJointRows); rows
+    /// outside every range (contacts) are auxiliary. Keeps no reference to its arguments. Rows
+    /// that do not fit the structure (a primary joint without 1 to 6 equality rows, or whose rows
+    /// couple other bodies) make the solves return InvalidInput until the next factor().
+    void factor(const ConstraintRows& rows, std::span<const JointRowRange> ranges, std::span<const RigidBody> bodies,
+                TreeProblems problems = TreeProblems::VelocityAndPosition);
+
+    /// The solves take the rows given to factor() (their targets, errors and bounds are read
+    /// here, the rest was read there).
+    ///
+    /// The velocity problem of the factorised rows: b_i = target_i − Cdot_i (current velocities),
+    /// bounds and friction coupling as the rows give them. InvalidInput after a PositionOnly
+    /// factorisation. Each problem's LCP starts from the row states its last solve ended with,
+    /// matched by identity (joint k's limit row q, its friction row q, the q-th row after the
+    /// joints' rows) and bodies; rows without a match start unknown.
+    TreeSolveResult solveVelocity(const ConstraintRows& rows, std::span<const RigidBody> bodies);
+    /// The position problem: b_i = −error_i; friction rows (coupled rows and joint friction rows)
+    /// are held at 0.
+    TreeSolveResult solvePosition(const ConstraintRows& rows);
+
+    /// λ of every row of the last solve, in the rows' order.
+    std::span<const Real> impulses() const;
+    /// v += M⁻¹ Jᵀ λ for the last solve's λ (rows as given to factor).
+    void applyImpulses(std::span<RigidBody> bodies) const;
+    /// Positions moved by M⁻¹ Jᵀ λ (centre by the linear part, orientation turned by the angular).
+    void applyDisplacements(std::span<RigidBody> bodies) const;
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace af

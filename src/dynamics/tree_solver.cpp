@@ -1,0 +1,326 @@
+// The tree solver's steps: which rows are primary, the two problems (velocity, position) on one
+// factorisation, the auxiliary LCP warm-started by row identity, and the primary impulses.
+
+#include "af/dynamics/tree_solver.h"
+
+#include "row_system.h"
+#include "tree_internal.h"
+
+#include <algorithm>
+
+namespace af {
+
+using namespace tree_detail;
+
+namespace {
+
+constexpr int kPrimary = -1;
+constexpr int kLeftOut = -2;  // a friction row, in a factorisation for the position problem only
+
+// A row's identity from step to step: joint k's row q of a kind, or the q-th row after the
+// joints' rows. Keys grow along the rows as World writes them, so matching is one merge.
+enum class RowKind : std::uint64_t { Equality = 0, Limit = 1, Friction = 2, Other = 3 };
+
+std::uint64_t rowKey(std::uint64_t group, RowKind kind, std::uint64_t offset) {
+    return (group << 24) | (static_cast<std::uint64_t>(kind) << 20) | offset;
+}
+
+// What the last solve of one problem ended with, to warm-start the next.
+struct WarmStart {
+    std::vector<std::uint64_t> keys;
+    std::vector<int> bodyA, bodyB;
+    std::vector<LcpRowState> states;
+};
+
+}  // namespace
+
+struct TreeSolver::Impl {
+    LcpExactSolver lcp;
+    Forest forest;
+    TreeFactor tree;
+    Auxiliary aux;
+    bool valid = false;         // the last factor() matched the structure
+    bool withFriction = true;  // the last factor() kept the friction rows
+
+    // Per row of the last factor().
+    std::vector<int> auxIndex;  // index among the auxiliary rows, kPrimary, or kLeftOut (λ = 0)
+    std::vector<std::uint64_t> key;
+    std::vector<std::uint8_t> friction;  // a joint friction or coupled row: 0 in the position problem
+    // Per auxiliary row.
+    std::vector<int> auxRows;
+    // Per node: the rows of a joint node.
+    std::vector<int> nodeFirst, nodeRows;
+
+    // Workspace of a solve.
+    std::vector<Real> b, bAux, rhs, lo, hi, mu, cfm, x, lambda;
+    std::vector<int> findex;
+    std::vector<LcpRowState> states;
+    std::vector<Vec6> z, solution, bodyImpulse;
+    WarmStart velocityStart, positionStart;
+
+    void classify(const ConstraintRows& rows, std::span<const JointRowRange> ranges);
+    TreeSolveResult solve(const ConstraintRows& rows, WarmStart& start, bool position);
+    bool setBounds(const ConstraintRows& rows, bool position);
+    void warmStates(const ConstraintRows& rows, const WarmStart& start);
+    void remember(const ConstraintRows& rows, WarmStart& start) const;
+    void solvePrimary();
+    void accumulateImpulses(const ConstraintRows& rows);
+};
+
+TreeSolver::TreeSolver(const LcpExactSettings& settings) : impl_(std::make_unique<Impl>()) {
+    impl_->lcp.setSettings(settings);
+}
+TreeSolver::~TreeSolver() = default;
+TreeSolver::TreeSolver(TreeSolver&&) noexcept = default;
+TreeSolver& TreeSolver::operator=(TreeSolver&&) noexcept = default;
+
+void TreeSolver::setSettings(const LcpExactSettings& settings) { impl_->lcp.setSettings(settings); }
+
+void TreeSolver::setStructure(std::span<const RigidBody> bodies, std::span<const Joint> joints) {
+    impl_->forest = buildForest(bodies, joints);
+    impl_->aux.forgetPaths();
+    impl_->valid = false;
+    resetWarmStart();
+}
+
+void TreeSolver::resetWarmStart() {
+    impl_->velocityStart.keys.clear();
+    impl_->positionStart.keys.clear();
+}
+
+bool TreeSolver::isPrimary(int joint) const {
+    const std::vector<std::uint8_t>& primary = impl_->forest.primary;
+    return joint >= 0 && static_cast<std::size_t>(joint) < primary.size() && primary[static_cast<std::size_t>(joint)];
+}
+
+void TreeSolver::Impl::classify(const ConstraintRows& rows, std::span<const JointRowRange> ranges) {
+    const std::size_t n = rows.size();
+    constexpr int kUnset = -3;
+    auxIndex.assign(n, kUnset);
+    key.resize(n);
+    friction.assign(n, 0);
+    nodeFirst.assign(forest.nodes.size(), 0);
+    nodeRows.assign(forest.nodes.size(), 0);
+    for (std::size_t j = 0; j < ranges.size(); ++j) {
+        const JointRowRange& range = ranges[j];
+        const int node = forest.nodeOfJoint[j];
+        if (node >= 0) {
+            nodeFirst[static_cast<std::size_t>(node)] = range.first;
+            nodeRows[static_cast<std::size_t>(node)] = range.equalityRows;
+        }
+        const int counts[3] = {range.equalityRows, range.limitRows, range.frictionRows};
+        int row = range.first;
+        for (int kind = 0; kind < 3; ++kind)
+            for (int q = 0; q < counts[kind]; ++q, ++row) {
+                const std::size_t r = static_cast<std::size_t>(row);
+                if (r >= n) {
+                    valid = false;
+                    return;
+                }
+                key[r] = rowKey(j, static_cast<RowKind>(kind), static_cast<std::uint64_t>(q));
+                friction[r] = kind == 2;
+                auxIndex[r] = kind == 0 && node >= 0 ? kPrimary : 0;
+            }
+    }
+    std::uint64_t others = 0;
+    auxRows.clear();
+    for (std::size_t r = 0; r < n; ++r) {
+        if (auxIndex[r] == kUnset) key[r] = rowKey(ranges.size(), RowKind::Other, others++);
+        if (rows[r].frictionSource >= 0) friction[r] = 1;
+        if (auxIndex[r] == kPrimary) continue;
+        if (!withFriction && (friction[r] || (rows[r].lo == 0 && rows[r].hi == 0))) {
+            auxIndex[r] = kLeftOut;
+            continue;
+        }
+        auxIndex[r] = static_cast<int>(auxRows.size());
+        auxRows.push_back(static_cast<int>(r));
+    }
+}
+
+void TreeSolver::factor(const ConstraintRows& rows, std::span<const JointRowRange> ranges,
+                        std::span<const RigidBody> bodies, TreeProblems problems) {
+    Impl& s = *impl_;
+    s.withFriction = problems == TreeProblems::VelocityAndPosition;
+    s.valid = s.tree.factor(s.forest, rows, ranges, bodies);
+    if (!s.valid) return;
+    s.classify(rows, ranges);
+    if (!s.valid) return;
+    s.aux.build(s.tree, s.forest, rows, s.auxRows);
+    s.lcp.reserve(static_cast<int>(s.auxRows.size()));
+}
+
+TreeSolveResult TreeSolver::solveVelocity(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
+    Impl& s = *impl_;
+    s.b.resize(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) s.b[i] = rows[i].target - rowVelocity(rows[i], bodies);
+    return s.solve(rows, s.velocityStart, false);
+}
+
+TreeSolveResult TreeSolver::solvePosition(const ConstraintRows& rows) {
+    Impl& s = *impl_;
+    s.b.resize(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) s.b[i] = -rows[i].error;
+    return s.solve(rows, s.positionStart, true);
+}
+
+// Takes each auxiliary row's state from the last solve's row with the same identity and bodies.
+void TreeSolver::Impl::warmStates(const ConstraintRows& rows, const WarmStart& start) {
+    std::size_t p = 0;
+    for (std::size_t k = 0; k < auxRows.size(); ++k) {
+        const std::size_t r = static_cast<std::size_t>(auxRows[k]);
+        while (p < start.keys.size() && start.keys[p] < key[r]) ++p;
+        const bool same = p < start.keys.size() && start.keys[p] == key[r] && start.bodyA[p] == rows[r].bodyA &&
+                          start.bodyB[p] == rows[r].bodyB;
+        states[k] = same ? start.states[p] : LcpRowState::Unknown;
+    }
+}
+
+void TreeSolver::Impl::remember(const ConstraintRows& rows, WarmStart& start) const {
+    const std::size_t n = auxRows.size();
+    start.keys.resize(n);
+    start.bodyA.resize(n);
+    start.bodyB.resize(n);
+    start.states.assign(states.begin(), states.begin() + static_cast<std::ptrdiff_t>(n));
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t r = static_cast<std::size_t>(auxRows[k]);
+        start.keys[k] = key[r];
+        start.bodyA[k] = rows[r].bodyA;
+        start.bodyB[k] = rows[r].bodyB;
+    }
+}
+
+// Bounds and friction coupling of the auxiliary LCP; false for a box on a primary row (spec
+// §4.5: a fatal error in Doom).
+bool TreeSolver::Impl::setBounds(const ConstraintRows& rows, bool position) {
+    const std::size_t n = auxRows.size();
+    lo.resize(n);
+    hi.resize(n);
+    mu.resize(n);
+    cfm.resize(n);
+    findex.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t r = static_cast<std::size_t>(auxRows[k]);
+        const ConstraintRow& row = rows[r];
+        cfm[k] = row.cfm;
+        lo[k] = row.lo;
+        hi[k] = row.hi;
+        mu[k] = row.frictionCoefficient;
+        findex[k] = -1;
+        if (position && friction[r]) {
+            lo[k] = hi[k] = 0;
+        } else if (row.frictionSource >= 0) {
+            const std::size_t source = static_cast<std::size_t>(row.frictionSource);
+            if (source >= rows.size() || auxIndex[source] < 0) return false;
+            findex[k] = auxIndex[source];
+        }
+    }
+    return true;
+}
+
+// solution = H⁻¹ z with z = [Σ λ_k e_k; b_P] on input (z is overwritten).
+void TreeSolver::Impl::solvePrimary() {
+    tree.forward(z);
+    solution.resize(z.size());
+    tree.backward(z, solution);
+}
+
+TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& start, bool position) {
+    TreeSolveResult result;
+    lambda.assign(rows.size(), 0);
+    bodyImpulse.assign(forest.nodeOfBody.size(), Vec6::Zero());
+    if (!valid || rows.size() != auxIndex.size() || (!position && !withFriction) || !setBounds(rows, position)) {
+        result.status = LcpStatus::InvalidInput;
+        return result;
+    }
+    const std::size_t n = auxRows.size();
+    const std::size_t nodes = forest.nodes.size();
+    result.auxiliaryRows = static_cast<int>(n);
+    result.primaryRows = static_cast<int>(std::count(auxIndex.begin(), auxIndex.end(), kPrimary));
+
+    // What the primary rows alone do, x0 = H⁻¹ [0; b_P]; the auxiliary rows get what is left.
+    auto primaryRhs = [&] {
+        z.assign(nodes, Vec6::Zero());
+        for (std::size_t i = 0; i < nodes; ++i)
+            for (int q = 0; q < nodeRows[i]; ++q) z[i](q) = b[static_cast<std::size_t>(nodeFirst[i] + q)];
+    };
+    primaryRhs();
+    solvePrimary();
+    bAux.resize(n);
+    for (std::size_t k = 0; k < n; ++k) bAux[k] = b[static_cast<std::size_t>(auxRows[k])];
+    rhs.resize(n);
+    aux.reduce(solution, bAux, rhs);
+
+    x.assign(n, 0);
+    states.resize(n);
+    if (n > 0) {
+        warmStates(rows, start);
+        LcpProblem problem;
+        problem.size = static_cast<int>(n);
+        problem.a = aux.schur();
+        problem.b = rhs;
+        problem.lo = lo;
+        problem.hi = hi;
+        if (std::any_of(findex.begin(), findex.end(), [](int f) { return f >= 0; })) {
+            problem.findex = findex;
+            problem.mu = mu;
+        }
+        problem.cfm = cfm;
+        const LcpResult r = lcp.solve(problem, x, states);
+        result.status = r.status;
+        result.pivots = r.pivots;
+        result.couplingPasses = r.couplingPasses;
+        result.residual = r.residual;
+        remember(rows, start);
+    }
+    if (tree.singularBlocks() > 0 && result.status == LcpStatus::Solved) result.status = LcpStatus::Unsatisfiable;
+
+    // The primary impulses with the auxiliary ones applied: [y; μ] = H⁻¹ [Σ λ_k e_k; b_P], λ_P = −μ.
+    primaryRhs();
+    aux.inject(x, z);
+    solvePrimary();
+    for (std::size_t i = 0; i < nodes; ++i)
+        for (int q = 0; q < nodeRows[i]; ++q) lambda[static_cast<std::size_t>(nodeFirst[i] + q)] = -solution[i](q);
+    for (std::size_t k = 0; k < n; ++k) lambda[static_cast<std::size_t>(auxRows[k])] = x[k];
+    accumulateImpulses(rows);
+    return result;
+}
+
+// Σ Jᵀλ per body, for applyImpulses and applyDisplacements.
+void TreeSolver::Impl::accumulateImpulses(const ConstraintRows& rows) {
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const ConstraintRow& row = rows[r];
+        const Real l = lambda[r];
+        if (l == 0) continue;
+        if (row.bodyA != kWorldBody) {
+            Vec6& impulse = bodyImpulse[static_cast<std::size_t>(row.bodyA)];
+            impulse.head<3>() += l * row.linearA;
+            impulse.tail<3>() += l * row.angularA;
+        }
+        if (row.bodyB != kWorldBody) {
+            Vec6& impulse = bodyImpulse[static_cast<std::size_t>(row.bodyB)];
+            impulse.head<3>() += l * row.linearB;
+            impulse.tail<3>() += l * row.angularB;
+        }
+    }
+}
+
+std::span<const Real> TreeSolver::impulses() const { return impl_->lambda; }
+
+void TreeSolver::applyImpulses(std::span<RigidBody> bodies) const {
+    const std::vector<Vec6>& impulse = impl_->bodyImpulse;
+    for (std::size_t k = 0; k < bodies.size() && k < impulse.size(); ++k) {
+        RigidBody& body = bodies[k];
+        body.linearVelocity += body.inverseMass * impulse[k].head<3>();
+        body.angularVelocity += body.inverseInertiaWorld() * impulse[k].tail<3>();
+    }
+}
+
+void TreeSolver::applyDisplacements(std::span<RigidBody> bodies) const {
+    const std::vector<Vec6>& impulse = impl_->bodyImpulse;
+    for (std::size_t k = 0; k < bodies.size() && k < impulse.size(); ++k) {
+        RigidBody& body = bodies[k];
+        displaceBody(body, body.inverseMass * impulse[k].head<3>(), body.inverseInertiaWorld() * impulse[k].tail<3>());
+    }
+}
+
+}  // namespace af
