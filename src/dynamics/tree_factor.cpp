@@ -23,84 +23,69 @@ int nodeOf(const Forest& forest, int body) {
     return body == kWorldBody ? -1 : forest.nodeOfBody[static_cast<std::size_t>(body)];
 }
 
+template <int M>
+using Small = Eigen::Matrix<Real, M, M>;
+
+// Sylvester's test (leading minors > 0) and the inverse by cofactors of a symmetric M×M matrix,
+// M ≤ 3. Exactly symmetric. False if the matrix is not positive definite.
+template <int M>
+bool invertSmall(const Small<M>& a, Small<M>& inverse) {
+    if constexpr (M == 1) {
+        if (!(a(0, 0) > 0)) return false;
+        inverse(0, 0) = 1 / a(0, 0);
+    } else if constexpr (M == 2) {
+        const Real det = a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1);
+        if (!(a(0, 0) > 0 && det > 0)) return false;
+        const Real s = 1 / det;
+        inverse << a(1, 1) * s, -a(0, 1) * s, -a(0, 1) * s, a(0, 0) * s;
+    } else {
+        const Real c00 = a(1, 1) * a(2, 2) - a(1, 2) * a(1, 2);
+        const Real c01 = a(1, 2) * a(0, 2) - a(0, 1) * a(2, 2);
+        const Real c02 = a(0, 1) * a(1, 2) - a(1, 1) * a(0, 2);
+        const Real det = a(0, 0) * c00 + a(0, 1) * c01 + a(0, 2) * c02;
+        if (!(a(0, 0) > 0 && a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) > 0 && det > 0)) return false;
+        const Real s = 1 / det;
+        const Real c11 = a(0, 0) * a(2, 2) - a(0, 2) * a(0, 2);
+        const Real c12 = a(0, 1) * a(0, 2) - a(0, 0) * a(1, 2);
+        const Real c22 = a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1);
+        inverse << c00 * s, c01 * s, c02 * s, c01 * s, c11 * s, c12 * s, c02 * s, c12 * s, c22 * s;
+    }
+    return true;
+}
+
 // The inverse of sign·A, A's top-left N×N block (its lower triangle is read), into the same
 // block of `inverse`, times sign again: A⁻¹ for sign = ±1 when sign·A is positive definite.
-// Through sign·A = L·diag(d)·Lᵀ with L unit lower triangular: (sign·A)⁻¹ = L⁻ᵀ diag(1/d) L⁻¹,
-// written out for the fixed size with one division per row (Eigen's LLT solves go through its
-// general triangular kernels, several times slower here). Exactly symmetric. False if sign·A
-// is not positive definite.
+// Past 3 rows by blocks: with sign·A = [P Q; Qᵀ R] (P 3×3), X = P⁻¹Q and the Schur complement
+// T = R − QᵀX, the inverse is [P⁻¹ + X T⁻¹ Xᵀ, −X T⁻¹; −T⁻¹Xᵀ, T⁻¹], and sign·A is positive
+// definite iff P and T are: short, independent small products instead of the long dependent
+// chain of a Cholesky factorisation (and of Eigen's general triangular solves). Exactly
+// symmetric. False if sign·A is not positive definite.
 template <int N>
 bool invertDefinite(const Mat6& a, Real sign, Mat6& inverse) {
-    Real l[N][N] = {};
-    Real d[N];
-    Real inverseD[N];
-    for (int j = 0; j < N; ++j) {
-        Real v = sign * a(j, j);
-        for (int k = 0; k < j; ++k) v -= l[j][k] * l[j][k] * d[k];
-        if (!(v > 0)) return false;
-        d[j] = v;
-        inverseD[j] = 1 / v;
-        for (int i = j + 1; i < N; ++i) {
-            Real w = sign * a(i, j);
-            for (int k = 0; k < j; ++k) w -= l[i][k] * l[j][k] * d[k];
-            l[i][j] = w * inverseD[j];
-        }
+    if constexpr (N <= 3) {
+        Small<N> result;
+        if (!invertSmall<N>(sign * Small<N>(a.topLeftCorner<N, N>().template selfadjointView<Eigen::Lower>()), result))
+            return false;
+        inverse.topLeftCorner<N, N>() = sign * result;
+    } else {
+        constexpr int M = N - 3;
+        const Mat3 p = sign * Mat3(a.topLeftCorner<3, 3>().selfadjointView<Eigen::Lower>());
+        const Small<M> r = sign * Small<M>(a.block<M, M>(3, 3).template selfadjointView<Eigen::Lower>());
+        const Eigen::Matrix<Real, M, 3> qt = sign * a.block<M, 3>(3, 0);
+        Mat3 pInverse;
+        Small<M> tInverse;
+        if (!invertSmall<3>(p, pInverse)) return false;
+        const Eigen::Matrix<Real, 3, M> x = pInverse * qt.transpose();
+        const Small<M> t = r - qt * x;
+        if (!invertSmall<M>(Real(0.5) * (t + t.transpose()), tInverse)) return false;
+        const Eigen::Matrix<Real, 3, M> y = x * tInverse;
+        const Mat3 top = pInverse + y * x.transpose();
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j <= i; ++j) inverse(i, j) = inverse(j, i) = sign * Real(0.5) * (top(i, j) + top(j, i));
+        inverse.block<3, M>(0, 3) = -sign * y;
+        inverse.block<M, 3>(3, 0) = -sign * y.transpose();
+        inverse.block<M, M>(3, 3) = sign * tInverse;
     }
-    Real m[N][N] = {};  // L⁻¹, unit lower triangular
-    for (int j = 0; j < N; ++j) {
-        m[j][j] = 1;
-        for (int i = j + 1; i < N; ++i) {
-            Real v = 0;
-            for (int k = j; k < i; ++k) v -= l[i][k] * m[k][j];
-            m[i][j] = v;
-        }
-    }
-    for (int i = 0; i < N; ++i)
-        for (int j = 0; j <= i; ++j) {
-            Real v = 0;
-            for (int k = i; k < N; ++k) v += m[k][i] * m[k][j] * inverseD[k];
-            inverse(i, j) = sign * v;
-            inverse(j, i) = sign * v;
-        }
-    return true;
-}
-
-// Sylvester's test and the inverse by cofactors of a symmetric 3×3 matrix.
-bool invertDefinite3(const Mat3& a, Mat3& inverse) {
-    const Real c00 = a(1, 1) * a(2, 2) - a(1, 2) * a(1, 2);
-    const Real c01 = a(1, 2) * a(0, 2) - a(0, 1) * a(2, 2);
-    const Real c02 = a(0, 1) * a(1, 2) - a(1, 1) * a(0, 2);
-    const Real det = a(0, 0) * c00 + a(0, 1) * c01 + a(0, 2) * c02;
-    if (!(a(0, 0) > 0 && a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) > 0 && det > 0)) return false;
-    const Real s = 1 / det;
-    const Real c11 = a(0, 0) * a(2, 2) - a(0, 2) * a(0, 2);
-    const Real c12 = a(0, 1) * a(0, 2) - a(0, 0) * a(1, 2);
-    const Real c22 = a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1);
-    inverse << c00 * s, c01 * s, c02 * s, c01 * s, c11 * s, c12 * s, c02 * s, c12 * s, c22 * s;
-    return true;
-}
-
-// The 6×6 case of invertDefinite by 3×3 blocks: with sign·A = [P Q; Qᵀ R] (lower triangle
-// read), X = P⁻¹Q and the Schur complement T = R − QᵀX, the inverse is
-// [P⁻¹ + X T⁻¹ Xᵀ, −X T⁻¹; −T⁻¹Xᵀ, T⁻¹]; sign·A is positive definite iff P and T are. Short,
-// independent 3×3 products instead of the long dependent chain of a 6×6 Cholesky.
-template <>
-bool invertDefinite<6>(const Mat6& a, Real sign, Mat6& inverse) {
-    const Mat3 p = sign * Mat3(a.topLeftCorner<3, 3>().selfadjointView<Eigen::Lower>());
-    const Mat3 r = sign * Mat3(a.bottomRightCorner<3, 3>().selfadjointView<Eigen::Lower>());
-    const Mat3 qt = sign * a.bottomLeftCorner<3, 3>();
-    Mat3 pInverse, tInverse;
-    if (!invertDefinite3(p, pInverse)) return false;
-    const Mat3 x = pInverse * qt.transpose();
-    const Mat3 t = r - qt * x;
-    if (!invertDefinite3(Real(0.5) * (t + t.transpose()), tInverse)) return false;
-    const Mat3 y = x * tInverse;
-    const Mat3 top = pInverse + y * x.transpose();
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j <= i; ++j) inverse(i, j) = inverse(j, i) = sign * Real(0.5) * (top(i, j) + top(j, i));
-    inverse.topRightCorner<3, 3>() = -sign * y;
-    inverse.bottomLeftCorner<3, 3>() = -sign * y.transpose();
-    inverse.bottomRightCorner<3, 3>() = sign * tInverse;
     return true;
 }
 

@@ -234,6 +234,31 @@ TEST(TreeSolverStructure, APositionOnlyFactorisationRefusesTheVelocityProblem) {
     EXPECT_GT(solver.solveVelocity(scene.rows, scene.bodies).auxiliaryRows, 20);
 }
 
+// A joint whose rows repeat each other, without CFM: its block cannot be factorised. The solve
+// goes on (as Doom's does) and says so; the impulses stay finite.
+TEST(TreeSolverStructure, DependentPrimaryRowsWithoutCfmAreReportedNotHidden) {
+    std::vector<RigidBody> bodies = {RigidBody::dynamic(2, Mat3::Identity(), Vec3(0, 0, -5), Quat::Identity())};
+    bodies[0].linearVelocity = Vec3(1, 0, -3);
+    std::vector<Joint> joints(1);
+    joints[0].type = ConstraintType::BallAndSocket;
+    joints[0].bodyA = 0;
+    ConstraintRows rows;
+    const Vec3 axes[] = {Vec3::UnitX(), Vec3::UnitZ(), Vec3::UnitZ()};
+    for (const Vec3& axis : axes) {
+        ConstraintRow row;
+        row.bodyA = 0;
+        row.linearA = axis;
+        row.angularA = Vec3(0, 0, 5).cross(axis);
+        rows.add(row);
+    }
+    const std::vector<JointRowRange> ranges = {{.first = 0, .equalityRows = 3}};
+    TreeSolver solver;
+    solver.setStructure(bodies, joints);
+    solver.factor(rows, ranges, bodies);
+    EXPECT_EQ(solver.solveVelocity(rows, bodies).status, LcpStatus::Unsatisfiable);
+    for (const Real l : solver.impulses()) EXPECT_TRUE(std::isfinite(l));
+}
+
 TEST(TreeSolverStructure, EveryJointOfTheHungHumanoidIsPrimaryItsWeldToTheWorldToo) {
     Scene scene(hungHumanoid());
     TreeSolver solver;
