@@ -7,7 +7,7 @@
 namespace af {
 
 int CollisionWorld::addBody(const Polytope& shape, const CollisionFilter& filter) {
-    bodies_.push_back({shape, filter});
+    bodies_.push_back({ConvexShape(shape), filter});
     return static_cast<int>(bodies_.size()) - 1;
 }
 
@@ -28,7 +28,7 @@ int CollisionWorld::addPlane(const Plane& plane, ContentsMask contents) {
 
 int CollisionWorld::addStatic(const Polytope& worldShape, ContentsMask contents) {
     Static s;
-    s.shape = worldShape;
+    s.shape = ConvexShape(worldShape);
     s.bounds = boundsOf(worldShape, RigidPose{}, 0);
     s.contents = contents;
     statics_.push_back(std::move(s));
@@ -59,14 +59,14 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
                                   std::vector<BodyContact>& out) {
     out.clear();
     auto isAwake = [&](int i) { return awake.empty() || awake[static_cast<std::size_t>(i)] != 0; };
-    auto at = [](auto span, int i) -> decltype(auto) { return span[static_cast<std::size_t>(i)]; };
+    auto at = [](const auto& items, int i) -> decltype(auto) { return items[static_cast<std::size_t>(i)]; };
     auto pose = [&](int i) -> const RigidPose& { return at(poses, i); };
 
     // Each box holds everything the body can reach in the step, so a pair's boxes overlap
     // whenever the pair can get within its margin.
     boxes_.resize(bodies_.size());
     for (std::size_t i = 0; i < bodies_.size(); ++i)
-        boxes_[i] = boundsOf(bodies_[i].shape, poses[i], margin + reach[i] + moves[i].norm());
+        boxes_[i] = boundsOf(bodies_[i].shape.polytope(), poses[i], margin + reach[i] + moves[i].norm());
     broadphase_.findPairs(boxes_, pairs_);
 
     BodyContact contact;
@@ -74,7 +74,7 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
         if (!isAwake(a) && !isAwake(b)) continue;
         if (!mayCollide(a, b)) continue;
         const Real pairMargin = margin + at(reach, a) + at(reach, b) + (at(moves, a) - at(moves, b)).norm();
-        contact.manifold = collide(bodyShape(a), pose(a), bodyShape(b), pose(b), pairMargin);
+        contact.manifold = collide(at(bodies_, a).shape, pose(a), at(bodies_, b).shape, pose(b), pairMargin);
         if (contact.manifold.empty()) continue;
         contact.bodyA = a;
         contact.bodyB = b;
@@ -91,7 +91,7 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
                 contact.manifold = collideWithPlane(bodyShape(a), pose(a), shape.plane, staticMargin);
             } else {
                 if (!boxes_[static_cast<std::size_t>(a)].overlaps(shape.bounds)) continue;
-                contact.manifold = collide(bodyShape(a), pose(a), shape.shape, RigidPose{}, staticMargin);
+                contact.manifold = collide(at(bodies_, a).shape, pose(a), shape.shape, RigidPose{}, staticMargin);
             }
             if (contact.manifold.empty()) continue;
             contact.bodyA = a;

@@ -51,8 +51,10 @@ struct World::State {
     LcpPgsSolver pgs;
     ShakeCorrection shake;
     std::vector<RigidBody> beforeShake;
+    std::vector<RigidBody> beforeProjection;
     WarmStartCache warmStart;
     WarmStartCache positionWarmStart;
+    std::vector<Real> frozenLo, frozenHi, pgsAnswer;  // fallback of a failed velocity solve
 
     void addBody(const RigidBody& body, const Polytope& shape, const CollisionFilter& filter,
                  const BodyMaterial& material, int figure);
@@ -70,8 +72,10 @@ struct World::State {
     void writeRows();
     void allowApproach(Real dt);
     LcpStatus solveVelocities();
+    void solveWithFrozenFriction(const LcpProblem& problem);
     void closeDrift(Real dt);
     void projectPositions();
+    bool moveWhileImproving(Real& violation);
     void settleNewContacts();
     LcpStatus solvePositions();
     Real largestViolation() const;

@@ -11,6 +11,7 @@ namespace {
 constexpr Real kShakeTrust = 2;         // a SHAKE move may be at most this many times its drift
 constexpr Real kShakeTolerance = 1e-9;  // length units: drift this small counts as closed
 constexpr Real kPenetrationTolerance = 1e-3;  // units beyond the contact slop worth another projection
+constexpr int kProjectionHalvings = 4;        // see projectPositions
 
 // Row keys of joints (see warm_start.h): the joint's number and the row's place in it. Contact
 // keys are hashes (contact_set.cpp) and rows of the extra source are keyed by their order.
@@ -116,15 +117,46 @@ LcpStatus World::State::solveVelocities() {
     const LcpResult r = exact.solve(problem, x, states);
     report.pivots = r.pivots;
     report.residual = r.residual;
-    if (r.status != LcpStatus::Solved) {
-        // Never apply the impulses of a failed pivoting solve (they may be far from any solution):
-        // the step goes on with PGS's answer, which is bounded, and the failure is counted.
-        warmStart.recall(rowKeys, states, x);
-        const LcpPgsResult fallback = pgs.solve(problem, x);
-        report.iterations = fallback.iterations;
-        report.residual = fallback.residual;
-    }
+    if (r.status != LcpStatus::Solved) solveWithFrozenFriction(problem);
     return r.status;
+}
+
+// Never apply the impulses of a failed pivoting solve: they may be far from any solution. The
+// failure is counted, and the step goes on with the best answer at hand: PGS estimates the
+// normal impulses, the friction boxes are frozen at μ times those, and the pivoting solver solves
+// that uncoupled problem, which is a convex one it always solves. If even that fails, PGS's
+// bounded answer is used.
+void World::State::solveWithFrozenFriction(const LcpProblem& problem) {
+    std::span<Real> x = system.solution();
+    std::span<LcpRowState> states = system.states();
+    warmStart.recall(rowKeys, states, x);
+    const LcpPgsResult estimate = pgs.solve(problem, x);
+    report.iterations = estimate.iterations;
+    report.residual = estimate.residual;
+
+    const std::size_t n = static_cast<std::size_t>(problem.size);
+    frozenLo.assign(problem.lo.begin(), problem.lo.end());
+    frozenHi.assign(problem.hi.begin(), problem.hi.end());
+    for (std::size_t i = 0; i < n && !problem.findex.empty(); ++i) {
+        const int source = problem.findex[i];
+        if (source < 0) continue;
+        const Real box = problem.mu[i] * std::abs(x[static_cast<std::size_t>(source)]);
+        frozenLo[i] = -box;
+        frozenHi[i] = box;
+    }
+    LcpProblem frozen = problem;
+    frozen.lo = frozenLo;
+    frozen.hi = frozenHi;
+    frozen.findex = {};
+    frozen.mu = {};
+    pgsAnswer.assign(x.begin(), x.end());
+    std::fill(states.begin(), states.end(), LcpRowState::Unknown);
+    const LcpResult r = exact.solve(frozen, x, states);
+    if (r.status == LcpStatus::Solved) {
+        report.residual = r.residual;
+    } else {
+        std::copy(pgsAnswer.begin(), pgsAnswer.end(), x.begin());
+    }
 }
 
 // Warm-started from the pattern of the last position solve (the previous pass, or the previous
@@ -134,6 +166,12 @@ LcpStatus World::State::solvePositions() {
     std::span<Real> x = system.solution();
     positionWarmStart.recall(rowKeys, states, x);
     const LcpStatus status = exactPosition.solve(system.problem(), x, states).status;
+    if (status != LcpStatus::Solved) {
+        // As for velocities: a failed pivoting solve's displacements may be far from any
+        // solution, and moving bodies by them can tear a figure apart. PGS's are bounded.
+        positionWarmStart.recall(rowKeys, states, x);
+        pgs.solve(system.problem(), x);
+    }
     positionWarmStart.remember(rowKeys, states, x);
     return status;
 }
@@ -207,11 +245,15 @@ void World::State::closeDrift(Real dt) {
 }
 
 // Whatever remains (joint errors older than the step, limit and contact penetration, drift
-// SHAKE refused) is removed by moving positions only, so correcting it never adds energy.
+// SHAKE refused) is removed by moving positions only, so correcting it never adds energy. Each
+// pass solves the linearised problem J M⁻¹ Jᵀ Δ = −C and moves along it as far as that reduces
+// the largest violation (halving the move up to kProjectionHalvings times): with large errors,
+// or rows that nearly contradict each other (a limb pinned between another figure and its own
+// joint), the full linear move can overshoot and tear joints open instead of closing them.
 void World::State::projectPositions() {
-    for (int pass = 0; pass < settings.positionIterations; ++pass) {
-        writeRows();
-        if (largestViolation() <= settings.positionTolerance) return;
+    writeRows();
+    Real violation = largestViolation();
+    for (int pass = 0; pass < settings.positionIterations && violation > settings.positionTolerance; ++pass) {
         // Friction rows act on velocities only.
         for (const JointRowRange& range : ranges)
             for (int r = 0; r < range.frictionRows; ++r) {
@@ -226,8 +268,30 @@ void World::State::projectPositions() {
         system.build(rows, bodies);
         system.setPositionRhs(rows);
         if (solvePositions() != LcpStatus::Solved) ++report.failures;
-        system.applyDisplacements(rows, bodies);
+        if (!moveWhileImproving(violation)) return;
     }
+}
+
+// Applies the solved displacements, halved until the largest violation drops below `violation`;
+// on success leaves the rows written at the new poses and `violation` updated, otherwise puts
+// the bodies back and returns false.
+bool World::State::moveWhileImproving(Real& violation) {
+    beforeProjection.assign(bodies.begin(), bodies.end());
+    const ConstraintRows solvedRows = rows;
+    std::span<Real> x = system.solution();
+    for (int attempt = 0; attempt <= kProjectionHalvings; ++attempt) {
+        system.applyDisplacements(solvedRows, bodies);
+        writeRows();
+        const Real after = largestViolation();
+        if (after < violation) {
+            violation = after;
+            return true;
+        }
+        std::copy(beforeProjection.begin(), beforeProjection.end(), bodies.begin());
+        for (Real& v : x) v /= 2;
+    }
+    writeRows();
+    return false;
 }
 
 // The contacts the step started with do not see everything the step did: a vertex left out of a
