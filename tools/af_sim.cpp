@@ -30,7 +30,9 @@ int simulate(Options& o) {
     for (const std::string& r : o.roots) o.scene.roots.emplace_back(r);
     if (o.scene.roots.empty()) o.scene.roots.emplace_back(AF_DATA_DIR);
     if (!o.noMap) o.scene.map = o.map.empty() ? std::filesystem::path(AF_DATA_DIR) / "maps/default.map" : std::filesystem::path(o.map);
-    o.scene.world.solver = o.solver == "pgs" ? af::SolverKind::Pgs : af::SolverKind::Exact;
+    o.scene.world.solver = o.solver == "pgs"    ? af::SolverKind::Pgs
+                           : o.solver == "tree" ? af::SolverKind::Tree
+                                                : af::SolverKind::Exact;
     if (!o.frames.empty()) o.run.framesWanted = 12;
 
     Scene scene = buildScene(o.scene);
@@ -73,7 +75,7 @@ int main(int argc, char** argv) {
     app.add_flag("--no-map", o.noMap, "drop onto an infinite floor at z = 0 instead of a map");
     app.add_option("--count", o.scene.count, "figures dropped in a pile")->check(CLI::Range(1, 1000))->capture_default_str();
     app.add_option("--seconds", o.run.seconds, "simulated time limit, seconds")->check(CLI::Range(0.001, 86400.0))->capture_default_str();
-    app.add_option("--solver", o.solver, "constraint solver")->check(CLI::IsMember({"exact", "pgs"}))->capture_default_str();
+    app.add_option("--solver", o.solver, "constraint solver")->check(CLI::IsMember({"exact", "tree", "pgs"}))->capture_default_str();
     app.add_option("--seed", o.scene.seed, "a small deterministic initial push, from this seed");
     app.add_flag("--json", o.json, "print the summary as one JSON object");
     app.add_option("--png", o.png, "write a picture of the final pose");

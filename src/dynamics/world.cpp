@@ -10,6 +10,7 @@ World::World(const WorldSettings& settings) : state_(std::make_unique<State>()) 
     s.collision = CollisionWorld(settings.collision);
     s.exact.setSettings(settings.exact);
     s.exactPosition.setSettings(settings.exact);
+    s.tree.setSettings(settings.exact);
     s.pgs.setSettings(settings.pgs);
 }
 

@@ -6,6 +6,7 @@
 #include "contact_set.h"
 #include "row_system.h"
 #include "shake.h"
+#include "af/dynamics/tree_solver.h"
 #include "warm_start.h"
 
 #include <cstdint>
@@ -48,6 +49,8 @@ struct World::State {
     RowSystem system;
     LcpExactSolver exact;
     LcpExactSolver exactPosition;
+    TreeSolver tree;
+    std::size_t treeJoints = 0;  // joints the tree's structure was set up for
     LcpPgsSolver pgs;
     ShakeCorrection shake;
     std::vector<RigidBody> beforeShake;
@@ -72,6 +75,7 @@ struct World::State {
     void writeRows();
     void allowApproach(Real dt);
     LcpStatus solveVelocities();
+    bool solveWithTree();
     void solveWithFrozenFriction(const LcpProblem& problem);
     void closeDrift(Real dt);
     void projectPositions();

@@ -108,6 +108,10 @@ LcpStatus World::State::solveVelocities() {
     std::span<Real> x = system.solution();
     std::span<LcpRowState> states = system.states();
     warmStart.recall(rowKeys, states, x);
+    if (settings.solver == SolverKind::Tree) {
+        if (solveWithTree()) return LcpStatus::Solved;
+        ++report.treeFallbacks;
+    }
     if (settings.solver == SolverKind::Pgs) {
         const LcpPgsResult r = pgs.solve(problem, x);
         report.iterations = r.iterations;
@@ -119,6 +123,23 @@ LcpStatus World::State::solveVelocities() {
     report.residual = r.residual;
     if (r.status != LcpStatus::Solved) solveWithFrozenFriction(problem);
     return r.status;
+}
+
+// The tree solver's answer is the dense one; its impulses go where the dense solve's would, so
+// that applying them and SHAKE work alike. False when it cannot serve these rows.
+bool World::State::solveWithTree() {
+    if (treeJoints != joints.size()) {
+        tree.setStructure(bodies, joints);
+        treeJoints = joints.size();
+    }
+    tree.factor(rows, ranges, bodies);
+    const TreeSolveResult r = tree.solveVelocity(rows, bodies);
+    if (r.status != LcpStatus::Solved) return false;
+    const std::span<const Real> lambda = tree.impulses();
+    std::copy(lambda.begin(), lambda.end(), system.solution().begin());
+    report.pivots = r.pivots;
+    report.residual = r.residual;
+    return true;
 }
 
 // Never apply the impulses of a failed pivoting solve: they may be far from any solution. The

@@ -44,5 +44,29 @@ TEST(WorldHumanoid, HungByTheChestItSwingsTenSecondsWithTightJointsAndLimits) {
     EXPECT_EQ(world.solverFailures(), 0);
 }
 
+// The tree solver gives the dense solve's impulses (tree_solver_test.cpp); stepped in the world
+// the two paths must stay together, and the tree path must really be taken (no fallback).
+TEST(WorldHumanoid, TreeSolverStepsLikeTheExactSolver) {
+    WorldSettings treeSettings = test::dynamicsOnly();
+    treeSettings.solver = SolverKind::Tree;
+    World exact(hungHumanoid(), test::dynamicsOnly());
+    World tree(hungHumanoid(), treeSettings);
+    shake(exact, 5);
+    shake(tree, 5);
+    int fallbacks = 0;
+    for (int i = 0; i < 30; ++i) {
+        exact.step();
+        tree.step();
+        fallbacks += tree.lastStep().treeFallbacks;
+        for (std::size_t b = 0; b < exact.bodies().size(); ++b) {
+            ASSERT_LT((exact.bodies()[b].position - tree.bodies()[b].position).norm(), 1e-6) << "step " << i << " body " << b;
+            ASSERT_LT((exact.bodies()[b].angularVelocity - tree.bodies()[b].angularVelocity).norm(), 1e-5) << "step " << i;
+        }
+    }
+    EXPECT_EQ(fallbacks, 0);
+    EXPECT_EQ(tree.solverFailures(), 0);
+    EXPECT_LT(tree.maxJointError(), 1e-6);
+}
+
 }  // namespace
 }  // namespace af

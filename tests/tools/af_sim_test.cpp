@@ -100,6 +100,20 @@ TEST(AfSim, TwoRunsWithTheSameSeedGiveTheSameSummary) {
     EXPECT_NE(ja["bodies"], nlohmann::json::parse(c.out)["bodies"]) << "the seed must change the push";
 }
 
+// Landing is chaotic and the coupled friction problem need not have one answer, so the two
+// solvers' runs are not compared pose by pose (tests/dynamics compares them without contacts);
+// the tree run must hold its joints and come to rest as the exact one does.
+TEST(AfSim, TreeSolverRunHoldsItsJointsAndComesToRest) {
+    const SimRun run = afSim("--solver tree --json");
+    ASSERT_EQ(run.status, 0) << run.out;
+    const nlohmann::json j = nlohmann::json::parse(run.out);
+    ASSERT_TRUE(j["rest_time_s"].is_number());
+    EXPECT_LT(j["rest_time_s"].get<double>(), 5.0);
+    EXPECT_LT(j["max_joint_error"].get<double>(), 1e-3);
+    EXPECT_LT(j["max_penetration"].get<double>(), 1.0);
+    EXPECT_FALSE(j["nan_detected"].get<bool>());
+}
+
 TEST(AfSim, BadInputGetsAClearMessageAndANonzeroStatus) {
     const SimRun entity = afSim("--entity no_such_entity");
     EXPECT_NE(entity.status, 0);

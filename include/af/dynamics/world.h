@@ -44,7 +44,11 @@
 
 namespace af {
 
-enum class SolverKind { Exact, Pgs };
+// Exact: the dense pivoting solve of all rows. Tree: the same answer through the linear-time
+// factorisation of the joint trees (tree_solver.h), with the dense solve as its fallback
+// (rows that do not fit a tree, such as those of a world where some figures rest). Pgs:
+// projected Gauss–Seidel. The position projection always uses the dense pivoting solve.
+enum class SolverKind { Exact, Tree, Pgs };
 
 struct WorldSettings {
     Vec3 gravity = Vec3(0, 0, -1066);  // Doom's g_gravity, units/s²
@@ -80,6 +84,7 @@ struct StepReport {
     Real residual = 0;             // LCP residual of the last velocity solve
     int failures = 0;              // solves of this step that did not report Solved
     int shakeRefusals = 0;         // substeps whose SHAKE correction was refused (world.cpp)
+    int treeFallbacks = 0;         // Tree solver: substeps whose rows it could not serve (dense used)
 };
 
 // Appends rows for the current step (hand-made contacts in tests, drags in the console).
