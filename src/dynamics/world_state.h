@@ -76,6 +76,7 @@ struct World::State {
     void allowApproach(Real dt);
     LcpStatus solveVelocities();
     bool solveWithTree();
+    bool solveByBoxIteration(const LcpProblem& problem);
     void solveWithFrozenFriction(const LcpProblem& problem);
     void closeDrift(Real dt);
     void projectPositions();

@@ -12,6 +12,8 @@ constexpr Real kShakeTrust = 2;         // a SHAKE move may be at most this many
 constexpr Real kShakeTolerance = 1e-9;  // length units: drift this small counts as closed
 constexpr Real kPenetrationTolerance = 1e-3;  // units beyond the contact slop worth another projection
 constexpr int kProjectionHalvings = 4;        // see projectPositions
+constexpr int kBoxPasses = 8;                 // see solveByBoxIteration
+constexpr Real kBoxTolerance = 1e-9;          // relative change of a friction box that counts as none
 
 // Row keys of joints (see warm_start.h): the joint's number and the row's place in it. Contact
 // keys are hashes (contact_set.cpp) and rows of the extra source are keyed by their order.
@@ -118,11 +120,49 @@ LcpStatus World::State::solveVelocities() {
         report.residual = r.residual;
         return r.status == LcpStatus::NotConverged ? LcpStatus::Solved : r.status;
     }
+    if (solveByBoxIteration(problem)) return LcpStatus::Solved;
     const LcpResult r = exact.solve(problem, x, states);
-    report.pivots = r.pivots;
+    report.pivots += r.pivots;
     report.residual = r.residual;
     if (r.status != LcpStatus::Solved) solveWithFrozenFriction(problem);
     return r.status;
+}
+
+// Friction boxes follow their normals by fixed-point iteration: each pass freezes every box at
+// mu·|x_normal| of the last answer and solves that plain boxed LCP (convex, so the pivoting never
+// cycles), warm-started from the pattern before. When a pass leaves every box where it found it,
+// its answer is complementary with the coupled bounds too. False when that does not happen
+// within kBoxPasses; the coupled solve then starts from the last pattern.
+bool World::State::solveByBoxIteration(const LcpProblem& problem) {
+    std::span<Real> x = system.solution();
+    std::span<LcpRowState> states = system.states();
+    const std::size_t n = static_cast<std::size_t>(problem.size);
+    frozenLo.assign(problem.lo.begin(), problem.lo.end());
+    frozenHi.assign(problem.hi.begin(), problem.hi.end());
+    LcpProblem frozen = problem;
+    frozen.lo = frozenLo;
+    frozen.hi = frozenHi;
+    frozen.findex = {};
+    frozen.mu = {};
+    for (int pass = 0; pass <= kBoxPasses; ++pass) {
+        Real change = 0, largest = 0;
+        for (std::size_t i = 0; i < n && !problem.findex.empty(); ++i) {
+            const int source = problem.findex[i];
+            if (source < 0) continue;
+            const Real box = problem.mu[i] * std::abs(x[static_cast<std::size_t>(source)]);
+            change = std::max(change, std::abs(box - frozenHi[i]));
+            largest = std::max(largest, box);
+            frozenLo[i] = -box;
+            frozenHi[i] = box;
+        }
+        if (pass > 0 && change <= kBoxTolerance * (1 + largest)) return true;
+        if (pass == kBoxPasses) return false;
+        const LcpResult r = exact.solve(frozen, x, states);
+        report.pivots += r.pivots;
+        report.residual = r.residual;
+        if (r.status != LcpStatus::Solved) return false;
+    }
+    return false;
 }
 
 // The tree solver's answer is the dense one; its impulses go where the dense solve's would, so
