@@ -62,7 +62,7 @@ void ContactSet::gather(const std::vector<BodyContact>& manifolds, std::span<con
     }
 }
 
-Contact ContactSet::current(const ContactPoint& p, std::span<const RigidBody> bodies) const {
+Contact currentContact(const ContactPoint& p, std::span<const RigidBody> bodies) {
     const RigidBody* a = bodyOrNull(bodies, p.bodyA);
     const Vec3 onA = toWorld(a, p.localA);
     const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
@@ -79,18 +79,18 @@ Contact ContactSet::current(const ContactPoint& p, std::span<const RigidBody> bo
     return c;
 }
 
-void ContactSet::writeRows(std::span<const RigidBody> bodies, const ContactSettings& settings, ConstraintRows& rows,
-                           std::vector<std::uint64_t>& keys) const {
-    for (const ContactPoint& p : points_) {
+void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
+                      const ContactSettings& settings, ConstraintRows& rows, std::vector<std::uint64_t>& keys) {
+    for (const ContactPoint& p : points) {
         const std::size_t first = rows.size();
-        writeContactRows(current(p, bodies), bodies, settings, rows);
+        writeContactRows(currentContact(p, bodies), bodies, settings, rows);
         for (std::size_t r = first; r < rows.size(); ++r) keys.push_back(p.key + (r - first));
     }
 }
 
-Real ContactSet::maxPenetration(std::span<const RigidBody> bodies) const {
+Real maxPenetration(std::span<const ContactPoint> points, std::span<const RigidBody> bodies) {
     Real worst = 0;
-    for (const ContactPoint& p : points_) worst = std::max(worst, current(p, bodies).depth);
+    for (const ContactPoint& p : points) worst = std::max(worst, currentContact(p, bodies).depth);
     return worst;
 }
 

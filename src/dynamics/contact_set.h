@@ -38,21 +38,21 @@ struct ContactPoint {
     Real approachVelocity = 0;              // n·(v_A − v_B) at the point when gathered
 };
 
+// The contact at the bodies' current poses.
+Contact currentContact(const ContactPoint& point, std::span<const RigidBody> bodies);
+// Appends every point's rows, and one key per row (the point's key and the row's place).
+void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
+                      const ContactSettings& settings, ConstraintRows& rows, std::vector<std::uint64_t>& keys);
+// The deepest penetration of the points at the bodies' current poses (0 when none touches).
+Real maxPenetration(std::span<const ContactPoint> points, std::span<const RigidBody> bodies);
+
 class ContactSet {
 public:
     // Call before the step changes velocities: each point's approach velocity, which decides
     // whether it bounces, is taken from the bodies as they are now.
     void gather(const std::vector<BodyContact>& manifolds, std::span<const RigidBody> bodies,
                 std::span<const BodyMaterial> materials);
-
-    // The contact at the bodies' current poses.
-    Contact current(const ContactPoint& point, std::span<const RigidBody> bodies) const;
-
-    // Appends every point's rows, and one key per row (the point's key and the row's place).
-    void writeRows(std::span<const RigidBody> bodies, const ContactSettings& settings, ConstraintRows& rows,
-                   std::vector<std::uint64_t>& keys) const;
-
-    Real maxPenetration(std::span<const RigidBody> bodies) const;
+    std::span<const ContactPoint> points() const { return points_; }
     std::size_t size() const { return points_.size(); }
 
 private:

@@ -11,6 +11,8 @@ void WarmStartCache::remember(std::span<const std::uint64_t> keys, std::span<con
     std::sort(entries_.begin(), entries_.end());
 }
 
+void WarmStartCache::sort() { std::sort(entries_.begin(), entries_.end()); }
+
 int WarmStartCache::recall(std::span<const std::uint64_t> keys, std::span<LcpRowState> states,
                            std::span<Real> impulses) const {
     int found = 0;

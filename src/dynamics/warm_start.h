@@ -20,6 +20,10 @@ public:
     // Fills the guesses of `keys`; returns how many rows were found.
     int recall(std::span<const std::uint64_t> keys, std::span<LcpRowState> states, std::span<Real> impulses) const;
     void clear() { entries_.clear(); }
+    // Builds the cache from others with disjoint keys (the islands of a step): clear, add each,
+    // then sort.
+    void add(const WarmStartCache& other) { entries_.insert(entries_.end(), other.entries_.begin(), other.entries_.end()); }
+    void sort();
 
 private:
     struct Entry {

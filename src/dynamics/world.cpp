@@ -8,10 +8,6 @@ World::World(const WorldSettings& settings) : state_(std::make_unique<State>()) 
     State& s = *state_;
     s.settings = settings;
     s.collision = CollisionWorld(settings.collision);
-    s.exact.setSettings(settings.exact);
-    s.exactPosition.setSettings(settings.exact);
-    s.tree.setSettings(settings.exact);
-    s.pgs.setSettings(settings.pgs);
 }
 
 World::World(const Figure& figure, const WorldSettings& settings) : World(settings) { addFigure(figure); }
@@ -92,7 +88,7 @@ Real World::time() const { return state_->time; }
 const StepReport& World::lastStep() const { return state_->report; }
 int World::solverFailures() const { return state_->failures; }
 const std::vector<BodyContact>& World::contacts() const { return state_->manifolds; }
-Real World::maxPenetration() const { return state_->contacts.maxPenetration(state_->bodies); }
+Real World::maxPenetration() const { return af::maxPenetration(state_->contacts.points(), state_->bodies); }
 
 Real World::maxJointError() const {
     Real worst = 0;

@@ -4,9 +4,7 @@
 
 #include "af/dynamics/world.h"
 #include "contact_set.h"
-#include "row_system.h"
-#include "shake.h"
-#include "af/dynamics/tree_solver.h"
+#include "island.h"
 #include "warm_start.h"
 
 #include <cstdint>
@@ -43,21 +41,19 @@ struct World::State {
     std::vector<BodyMotion> motion;
     std::vector<int> group;  // per figure: union-find parent, figures touching each other
 
-    ConstraintRows rows;
-    std::vector<std::uint64_t> rowKeys;  // one per row: what wrote it (see warm_start.h)
-    std::vector<JointRowRange> ranges;
-    RowSystem system;
-    LcpExactSolver exact;
-    LcpExactSolver exactPosition;
-    TreeSolver tree;
-    std::size_t treeJoints = 0;  // joints the tree's structure was set up for
-    LcpPgsSolver pgs;
-    ShakeCorrection shake;
-    std::vector<RigidBody> beforeShake;
-    std::vector<RigidBody> beforeProjection;
-    WarmStartCache warmStart;
-    WarmStartCache positionWarmStart;
-    std::vector<Real> frozenLo, frozenHi, pgsAnswer;  // fallback of a failed velocity solve
+    // Islands of this step (island.h), in the order of their first body; the pool keeps its
+    // solvers from step to step, so an island that stays the same keeps its slot.
+    std::vector<Island> islands;
+    std::size_t islandCount = 0;
+    struct IslandMembers {
+        std::vector<int> bodies, joints, points;
+    };
+    std::vector<IslandMembers> members;
+    std::vector<int> localOf;  // per body: its index in its island, or kOutsideIsland
+    std::vector<int> parent;   // union-find over bodies
+    std::vector<int> islandOfRoot;
+    ConstraintRows extraScratch;
+    WarmStartCache warmStart;  // the last velocity solve of every island
 
     void addBody(const RigidBody& body, const Polytope& shape, const CollisionFilter& filter,
                  const BodyMaterial& material, int figure);
@@ -72,18 +68,9 @@ struct World::State {
     void substep(Real dt);
     void findContacts(Real dt);
     void findContactsOnce(Real dt);
-    void writeRows();
-    void allowApproach(Real dt);
-    LcpStatus solveVelocities();
-    bool solveWithTree();
-    bool solveByBoxIteration(const LcpProblem& problem);
-    void solveWithFrozenFriction(const LcpProblem& problem);
-    void closeDrift(Real dt);
-    void projectPositions();
-    bool moveWhileImproving(Real& violation);
+    void buildIslands();
+    IslandContext context();
     void settleNewContacts();
-    LcpStatus solvePositions();
-    Real largestViolation() const;
 };
 
 }  // namespace af

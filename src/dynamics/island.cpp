@@ -1,0 +1,93 @@
+// An island's local arrays: copying in and out, and writing its rows.
+
+#include "island.h"
+
+namespace af {
+
+namespace {
+
+// Row keys of joints (see warm_start.h): the joint's world number and the row's place in it.
+// Contact keys are hashes (contact_set.cpp) and rows of the extra source are keyed by their
+// order in it.
+constexpr std::uint64_t kJointKeyTag = 0x4a4full << 48;
+constexpr std::uint64_t kExtraKeyTag = 0x4558ull << 48;
+
+int renumber(int body, std::span<const int> localOf) {
+    return body == kWorldBody ? kWorldBody : localOf[static_cast<std::size_t>(body)];
+}
+
+}  // namespace
+
+void Island::gather(std::span<const int> bodyIds, std::span<const int> jointIds, std::span<const int> pointIds,
+                    const IslandWorld& world) {
+    const std::span<const int> localOf = world.localOf;
+    const bool sameJoints = std::equal(bodyIds.begin(), bodyIds.end(), bodyIds_.begin(), bodyIds_.end()) &&
+                            std::equal(jointIds.begin(), jointIds.end(), jointIds_.begin(), jointIds_.end());
+    if (!sameJoints) {
+        bodyIds_.assign(bodyIds.begin(), bodyIds.end());
+        jointIds_.assign(jointIds.begin(), jointIds.end());
+        joints_.clear();
+        for (const int j : jointIds) {
+            Joint joint = world.joints[static_cast<std::size_t>(j)];
+            joint.bodyA = renumber(joint.bodyA, localOf);
+            joint.bodyB = renumber(joint.bodyB, localOf);
+            joints_.push_back(std::move(joint));
+        }
+        treeReady_ = false;
+    } else {
+        for (std::size_t k = 0; k < jointIds.size(); ++k)
+            joints_[k].lastImpulse = world.joints[static_cast<std::size_t>(jointIds[k])].lastImpulse;
+    }
+    points_.clear();
+    for (const int p : pointIds) {
+        ContactPoint point = world.points[static_cast<std::size_t>(p)];
+        point.bodyA = renumber(point.bodyA, localOf);
+        point.bodyB = renumber(point.bodyB, localOf);
+        points_.push_back(point);
+    }
+    localOf_ = localOf;
+    bodies_.clear();
+    for (const int b : bodyIds) bodies_.push_back(world.bodies[static_cast<std::size_t>(b)]);
+}
+
+void Island::scatter(std::vector<RigidBody>& worldBodies, std::vector<Joint>& worldJoints) const {
+    for (std::size_t i = 0; i < bodyIds_.size(); ++i) worldBodies[static_cast<std::size_t>(bodyIds_[i])] = bodies_[i];
+    for (std::size_t k = 0; k < jointIds_.size(); ++k)
+        worldJoints[static_cast<std::size_t>(jointIds_[k])].lastImpulse = joints_[k].lastImpulse;
+}
+
+// The extra source sees the world's bodies (with this island's current poses written back);
+// its rows that touch this island are kept, renumbered.
+void Island::writeRows(IslandContext& context) {
+    rows_.clear();
+    ranges_.clear();
+    rowKeys_.clear();
+    for (std::size_t k = 0; k < joints_.size(); ++k) {
+        const JointRowRange range = writeJointRows(joints_[k], bodies_, context.settings.rows, rows_);
+        ranges_.push_back(range);
+        const std::uint64_t joint = kJointKeyTag | (static_cast<std::uint64_t>(jointIds_[k]) << 8);
+        for (int r = 0; r < range.equalityRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(r));
+        for (int r = 0; r < range.limitRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(64 + r));
+        for (int r = 0; r < range.frictionRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(128 + r));
+    }
+    writeContactRows(points_, bodies_, context.settings.contact, rows_, rowKeys_);
+    if (!context.extraRows) return;
+    for (std::size_t i = 0; i < bodyIds_.size(); ++i)
+        context.worldBodies[static_cast<std::size_t>(bodyIds_[i])] = bodies_[i];
+    extra_.clear();
+    context.extraRows(context.worldBodies, extra_);
+    extraIndex_.assign(extra_.size(), -1);
+    for (std::size_t r = 0; r < extra_.size(); ++r) {
+        ConstraintRow row = extra_[r];
+        const int a = renumber(row.bodyA, localOf_);
+        const int b = renumber(row.bodyB, localOf_);
+        if ((a < 0 && b < 0) || a == kOutsideIsland || b == kOutsideIsland) continue;
+        row.bodyA = a;
+        row.bodyB = b;
+        if (row.frictionSource >= 0) row.frictionSource = extraIndex_[static_cast<std::size_t>(row.frictionSource)];
+        extraIndex_[r] = rows_.add(row);
+        rowKeys_.push_back(kExtraKeyTag | r);
+    }
+}
+
+}  // namespace af

@@ -1,0 +1,103 @@
+#pragma once
+// An island: awake bodies joined (directly or through others) by joints or contacts, solved on
+// its own. The bodies are copied into contiguous local arrays (rows, joints and contact points
+// renumbered to them), so that the cost of a step grows with each island's size rather than
+// with the whole world's, and two figures that do not touch never share a dense system.
+//
+// The step of an island (island_step.cpp) is the world's step after velocity integration: rows,
+// velocity solve, position integration, SHAKE, position projection. Its order and reasons are
+// those of af/dynamics/world.h.
+
+#include "af/dynamics/lcp.h"
+#include "af/dynamics/tree_solver.h"
+#include "af/dynamics/world.h"
+#include "contact_set.h"
+#include "row_system.h"
+#include "shake.h"
+#include "warm_start.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace af {
+
+// What every island of a step shares: the settings, the extra row source (called on the world's
+// bodies, see Island::writeRows) and where the islands' reports and warm starts are gathered.
+struct IslandContext {
+    const WorldSettings& settings;
+    const RowSource& extraRows;
+    std::vector<RigidBody>& worldBodies;
+    StepReport& report;
+    const WarmStartCache& velocityWarmStart;  // the previous step's rows, all islands
+};
+
+// What the islands are gathered from. `localOf` maps every world body to its index in its own
+// island, or to kOutsideIsland (resting bodies, which no row of an island touches).
+inline constexpr int kOutsideIsland = -2;
+struct IslandWorld {
+    std::span<const RigidBody> bodies;
+    const std::vector<Joint>& joints;
+    std::span<const ContactPoint> points;
+    std::span<const int> localOf;
+};
+
+class Island {
+public:
+    // Copies the bodies (ascending world indices), the joints (world indices) and the contact
+    // points (indices into world.points) into the local arrays, renumbered.
+    void gather(std::span<const int> bodyIds, std::span<const int> jointIds, std::span<const int> pointIds,
+                const IslandWorld& world);
+    // Writes the bodies and the joints' impulses back.
+    void scatter(std::vector<RigidBody>& worldBodies, std::vector<Joint>& worldJoints) const;
+
+    // The step after velocity integration (see the file comment).
+    void step(Real dt, IslandContext& context);
+    // The projection alone, with the contact points gathered last (settling new contacts).
+    void project(IslandContext& context);
+    Real maxPenetration() const { return af::maxPenetration(points_, bodies_); }
+
+    // The rows of this step's velocity solve, for the next step's warm start.
+    const WarmStartCache& velocityWarmStart() const { return velocityCache_; }
+
+private:
+    void writeRows(IslandContext& context);
+    void allowApproach(Real dt);
+    LcpStatus solveVelocities(IslandContext& context);
+    bool solveWithTree(IslandContext& context);
+    bool solveByBoxIteration(const LcpProblem& problem, IslandContext& context);
+    void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
+    void closeDrift(Real dt, IslandContext& context);
+    void projectPositions(IslandContext& context);
+    bool moveWhileImproving(Real& violation, IslandContext& context);
+    LcpStatus solvePositions();
+    Real largestViolation() const;
+
+    std::vector<int> bodyIds_;
+    std::vector<int> jointIds_;
+    std::vector<RigidBody> bodies_;
+    std::vector<Joint> joints_;
+    std::vector<ContactPoint> points_;
+    std::span<const int> localOf_;
+    bool treeReady_ = false;  // the tree's structure is that of joints_ (same bodies, same joints)
+
+    ConstraintRows rows_;
+    std::vector<std::uint64_t> rowKeys_;
+    std::vector<JointRowRange> ranges_;
+    ConstraintRows extra_;  // scratch: rows of the extra source, world numbering
+    std::vector<int> extraIndex_;
+    RowSystem system_;
+    LcpExactSolver exact_;
+    LcpExactSolver exactPosition_;
+    TreeSolver tree_;
+    LcpPgsSolver pgs_;
+    ShakeCorrection shake_;
+    std::vector<RigidBody> beforeShake_;
+    std::vector<RigidBody> beforeProjection_;
+    ConstraintRows solvedRows_;
+    WarmStartCache velocityCache_;
+    WarmStartCache positionCache_;  // the last position pass of this island (this step or before)
+    std::vector<Real> frozenLo_, frozenHi_, pgsAnswer_;
+    bool settingsSet_ = false;
+};
+
+}  // namespace af

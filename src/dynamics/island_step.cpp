@@ -1,0 +1,289 @@
+// One island's step after velocity integration; see island.h and af/dynamics/world.h.
+
+#include "island.h"
+
+#include <algorithm>
+
+namespace af {
+
+namespace {
+
+constexpr Real kShakeTrust = 2;         // a SHAKE move may be at most this many times its drift
+constexpr Real kShakeTolerance = 1e-9;  // length units: drift this small counts as closed
+constexpr int kProjectionHalvings = 4;  // see projectPositions
+constexpr int kBoxPasses = 8;           // see solveByBoxIteration
+constexpr Real kBoxTolerance = 1e-9;    // relative change of a friction box that counts as none
+
+}  // namespace
+
+void Island::step(Real dt, IslandContext& context) {
+    if (!settingsSet_) {
+        exact_.setSettings(context.settings.exact);
+        exactPosition_.setSettings(context.settings.exact);
+        tree_.setSettings(context.settings.exact);
+        pgs_.setSettings(context.settings.pgs);
+        settingsSet_ = true;
+    }
+    writeRows(context);
+    context.report.rows += static_cast<int>(rows_.size());
+    allowApproach(dt);
+    system_.build(rows_, bodies_);
+    system_.setVelocityRhs(rows_, bodies_);
+    if (solveVelocities(context) != LcpStatus::Solved) ++context.report.failures;
+    system_.applyImpulses(rows_, bodies_);
+    // Doom caps the speeds after the constraint forces too (§4.9): a whipping chain end must not
+    // outrun what one step can follow.
+    for (RigidBody& b : bodies_) clampVelocity(b, context.settings.integration);
+    shake_.capture(rows_, ranges_, system_);
+
+    // The joint's impulse of this step bounds its friction in the next step, as in Doom.
+    const std::span<const Real> lambda = system_.solution();
+    for (std::size_t k = 0; k < joints_.size(); ++k) {
+        Real sum = 0;
+        for (int r = 0; r < ranges_[k].equalityRows; ++r) {
+            const Real l = lambda[static_cast<std::size_t>(ranges_[k].first + r)];
+            sum += l * l;
+        }
+        joints_[k].lastImpulse = std::sqrt(sum);
+    }
+    velocityCache_.remember(rowKeys_, system_.states(), lambda);
+
+    for (RigidBody& b : bodies_) {
+        integratePosition(b, dt);
+        applyAirFriction(b, dt);
+    }
+    closeDrift(dt, context);
+    projectPositions(context);
+}
+
+void Island::project(IslandContext& context) { projectPositions(context); }
+
+// Limit and contact rows are written a little before they are reached (speculatively), so that
+// they hold from the first step they are needed. Until the gap C > 0 is closed such a row must
+// not push: it allows approaching by the gap within the step, Cdot ≥ −C/dt. A bounce
+// (restitution target > 0) stays only if the bodies close the gap within this step.
+void Island::allowApproach(Real dt) {
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+        ConstraintRow& r = rows_[i];
+        if (r.lo != 0 || r.frictionSource >= 0 || r.error <= 0) continue;
+        const bool impactThisStep = -rowVelocity(r, bodies_) * dt >= r.error;
+        if (r.target > 0 && impactThisStep) continue;
+        r.target = std::min(r.target > 0 ? Real(0) : r.target, -r.error / dt);
+    }
+}
+
+// Warm-started from the rows with the same keys in the previous step. PGS running out of sweeps
+// is its normal way of stopping, not a failure.
+LcpStatus Island::solveVelocities(IslandContext& context) {
+    const LcpProblem problem = system_.problem();
+    std::span<Real> x = system_.solution();
+    std::span<LcpRowState> states = system_.states();
+    context.velocityWarmStart.recall(rowKeys_, states, x);
+    if (context.settings.solver == SolverKind::Tree) {
+        if (solveWithTree(context)) return LcpStatus::Solved;
+        ++context.report.treeFallbacks;
+    }
+    if (context.settings.solver == SolverKind::Pgs) {
+        const LcpPgsResult r = pgs_.solve(problem, x);
+        context.report.iterations = std::max(context.report.iterations, r.iterations);
+        context.report.residual = std::max(context.report.residual, r.residual);
+        return r.status == LcpStatus::NotConverged ? LcpStatus::Solved : r.status;
+    }
+    if (solveByBoxIteration(problem, context)) return LcpStatus::Solved;
+    const LcpResult r = exact_.solve(problem, x, states);
+    context.report.pivots += r.pivots;
+    context.report.residual = std::max(context.report.residual, r.residual);
+    if (r.status != LcpStatus::Solved) solveWithFrozenFriction(problem, context);
+    return r.status;
+}
+
+// Friction boxes follow their normals by fixed-point iteration: each pass freezes every box at
+// mu·|x_normal| of the last answer and solves that plain boxed LCP (convex, so the pivoting never
+// cycles), warm-started from the pattern before. When a pass leaves every box where it found it,
+// its answer is complementary with the coupled bounds too. False when that does not happen
+// within kBoxPasses; the coupled solve then starts from the last pattern.
+bool Island::solveByBoxIteration(const LcpProblem& problem, IslandContext& context) {
+    std::span<Real> x = system_.solution();
+    std::span<LcpRowState> states = system_.states();
+    const std::size_t n = static_cast<std::size_t>(problem.size);
+    frozenLo_.assign(problem.lo.begin(), problem.lo.end());
+    frozenHi_.assign(problem.hi.begin(), problem.hi.end());
+    LcpProblem frozen = problem;
+    frozen.lo = frozenLo_;
+    frozen.hi = frozenHi_;
+    frozen.findex = {};
+    frozen.mu = {};
+    for (int pass = 0; pass <= kBoxPasses; ++pass) {
+        Real change = 0, largest = 0;
+        for (std::size_t i = 0; i < n && !problem.findex.empty(); ++i) {
+            const int source = problem.findex[i];
+            if (source < 0) continue;
+            const Real box = problem.mu[i] * std::abs(x[static_cast<std::size_t>(source)]);
+            change = std::max(change, std::abs(box - frozenHi_[i]));
+            largest = std::max(largest, box);
+            frozenLo_[i] = -box;
+            frozenHi_[i] = box;
+        }
+        if (pass > 0 && change <= kBoxTolerance * (1 + largest)) return true;
+        if (pass == kBoxPasses) return false;
+        const LcpResult r = exact_.solve(frozen, x, states);
+        context.report.pivots += r.pivots;
+        context.report.residual = std::max(context.report.residual, r.residual);
+        if (r.status != LcpStatus::Solved) return false;
+    }
+    return false;
+}
+
+// The tree solver's answer is the dense one; its impulses go where the dense solve's would, so
+// that applying them and SHAKE work alike. False when it cannot serve these rows.
+bool Island::solveWithTree(IslandContext& context) {
+    if (!treeReady_) {
+        tree_.setStructure(bodies_, joints_);
+        treeReady_ = true;
+    }
+    tree_.factor(rows_, ranges_, bodies_);
+    const TreeSolveResult r = tree_.solveVelocity(rows_, bodies_);
+    if (r.status != LcpStatus::Solved) return false;
+    const std::span<const Real> lambda = tree_.impulses();
+    std::copy(lambda.begin(), lambda.end(), system_.solution().begin());
+    context.report.pivots += r.pivots;
+    context.report.residual = std::max(context.report.residual, r.residual);
+    return true;
+}
+
+// Never apply the impulses of a failed pivoting solve: they may be far from any solution. The
+// failure is counted, and the step goes on with the best answer at hand: PGS estimates the
+// normal impulses, the friction boxes are frozen at μ times those, and the pivoting solver solves
+// that uncoupled problem, which is a convex one it always solves. If even that fails, PGS's
+// bounded answer is used.
+void Island::solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context) {
+    std::span<Real> x = system_.solution();
+    std::span<LcpRowState> states = system_.states();
+    context.velocityWarmStart.recall(rowKeys_, states, x);
+    const LcpPgsResult estimate = pgs_.solve(problem, x);
+    context.report.iterations = std::max(context.report.iterations, estimate.iterations);
+    context.report.residual = std::max(context.report.residual, estimate.residual);
+
+    const std::size_t n = static_cast<std::size_t>(problem.size);
+    frozenLo_.assign(problem.lo.begin(), problem.lo.end());
+    frozenHi_.assign(problem.hi.begin(), problem.hi.end());
+    for (std::size_t i = 0; i < n && !problem.findex.empty(); ++i) {
+        const int source = problem.findex[i];
+        if (source < 0) continue;
+        const Real box = problem.mu[i] * std::abs(x[static_cast<std::size_t>(source)]);
+        frozenLo_[i] = -box;
+        frozenHi_[i] = box;
+    }
+    LcpProblem frozen = problem;
+    frozen.lo = frozenLo_;
+    frozen.hi = frozenHi_;
+    frozen.findex = {};
+    frozen.mu = {};
+    pgsAnswer_.assign(x.begin(), x.end());
+    std::fill(states.begin(), states.end(), LcpRowState::Unknown);
+    const LcpResult r = exact_.solve(frozen, x, states);
+    if (r.status == LcpStatus::Solved) {
+        context.report.residual = std::max(context.report.residual, r.residual);
+    } else {
+        std::copy(pgsAnswer_.begin(), pgsAnswer_.end(), x.begin());
+    }
+}
+
+// Warm-started from the pattern of the last position solve (the previous pass, or the previous
+// step's last pass): resting contacts and limits keep their pattern from pass to pass.
+LcpStatus Island::solvePositions() {
+    std::span<LcpRowState> states = system_.states();
+    std::span<Real> x = system_.solution();
+    positionCache_.recall(rowKeys_, states, x);
+    const LcpStatus status = exactPosition_.solve(system_.problem(), x, states).status;
+    if (status != LcpStatus::Solved) {
+        // As for velocities: a failed pivoting solve's displacements may be far from any
+        // solution, and moving bodies by them can tear a figure apart. PGS's are bounded.
+        positionCache_.recall(rowKeys_, states, x);
+        pgs_.solve(system_.problem(), x);
+    }
+    positionCache_.remember(rowKeys_, states, x);
+    return status;
+}
+
+// Two Newton steps of SHAKE (shake.h) close the in-step drift, which is O(dt²) to begin with.
+// They are kept only when they behave like a correction: the first move at most
+// kShakeTrust times the drift it closes, and the second step's drift a tenth of the first's.
+// Otherwise (a long chain whipping through a large turn in one step) the step keeps its
+// pre-SHAKE state and leaves the drift to the position-only pass, which can only remove energy.
+void Island::closeDrift(Real dt, IslandContext& context) {
+    beforeShake_.assign(bodies_.begin(), bodies_.end());
+    writeRows(context);
+    const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt);
+    writeRows(context);
+    const ShakeCorrection::Step second = shake_.apply(rows_, ranges_, bodies_, dt);
+    const bool wellConditioned = first.move <= kShakeTrust * first.drift + kShakeTolerance;
+    const bool converging = second.drift <= 0.1 * first.drift + kShakeTolerance;
+    if (!wellConditioned || !converging) {
+        std::copy(beforeShake_.begin(), beforeShake_.end(), bodies_.begin());
+        ++context.report.shakeRefusals;
+    }
+}
+
+// Whatever remains (joint errors older than the step, limit and contact penetration, drift
+// SHAKE refused) is removed by moving positions only, so correcting it never adds energy. Each
+// pass solves the linearised problem J M⁻¹ Jᵀ Δ = −C and moves along it as far as that reduces
+// the largest violation (halving the move up to kProjectionHalvings times): with large errors,
+// or rows that nearly contradict each other (a limb pinned between another figure and its own
+// joint), the full linear move can overshoot and tear joints open instead of closing them.
+void Island::projectPositions(IslandContext& context) {
+    writeRows(context);
+    Real violation = largestViolation();
+    for (int pass = 0; pass < context.settings.positionIterations && violation > context.settings.positionTolerance; ++pass) {
+        // Friction rows act on velocities only.
+        for (const JointRowRange& range : ranges_)
+            for (int r = 0; r < range.frictionRows; ++r) {
+                ConstraintRow& row = rows_[static_cast<std::size_t>(range.first + range.equalityRows + range.limitRows + r)];
+                row.lo = row.hi = 0;
+            }
+        for (std::size_t i = 0; i < rows_.size(); ++i)
+            if (rows_[i].frictionSource >= 0) {
+                rows_[i].frictionSource = -1;
+                rows_[i].lo = rows_[i].hi = 0;
+            }
+        system_.build(rows_, bodies_);
+        system_.setPositionRhs(rows_);
+        if (solvePositions() != LcpStatus::Solved) ++context.report.failures;
+        if (!moveWhileImproving(violation, context)) return;
+    }
+}
+
+// Applies the solved displacements, halved until the largest violation drops below `violation`;
+// on success leaves the rows written at the new poses and `violation` updated, otherwise puts
+// the bodies back and returns false.
+bool Island::moveWhileImproving(Real& violation, IslandContext& context) {
+    beforeProjection_.assign(bodies_.begin(), bodies_.end());
+    solvedRows_ = rows_;
+    std::span<Real> x = system_.solution();
+    for (int attempt = 0; attempt <= kProjectionHalvings; ++attempt) {
+        system_.applyDisplacements(solvedRows_, bodies_);
+        writeRows(context);
+        const Real after = largestViolation();
+        if (after < violation) {
+            violation = after;
+            return true;
+        }
+        std::copy(beforeProjection_.begin(), beforeProjection_.end(), bodies_.begin());
+        for (Real& v : x) v /= 2;
+    }
+    writeRows(context);
+    return false;
+}
+
+// Equality rows violate by |C|, one-sided rows (lo = 0: limits, contacts) only when C < 0.
+Real Island::largestViolation() const {
+    Real worst = 0;
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+        const ConstraintRow& r = rows_[i];
+        if (r.frictionSource >= 0 || (r.lo == 0 && r.hi == 0)) continue;
+        worst = std::max(worst, r.lo == 0 ? -r.error : std::abs(r.error));
+    }
+    return worst;
+}
+
+}  // namespace af
