@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# Issue #4's side-by-side comparison: ODE and Bullet (Debian's packages) and our af-bench-scene on
+# one ragdoll scene of bench-scene.md, every engine/variant once, as a table plus the ratios of our
+# solvers' mean µs/step to Bullet si10's.
+#
+# usage: bench/compare.sh [--scene single|grid4|grid16|pile] [--steps N] [--max-seconds S]
+#                         [--sleep on|off] [--no-install]
+# env:   BUILD_DIR (default <repo>/build-bench), JOBS (default 2)
+set -euo pipefail
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${BUILD_DIR:-$root/build-bench}
+jobs=${JOBS:-2}
+scene=single steps=600 max_seconds=120 sleep=off install=1
+while [[ $# -gt 0 ]]; do
+    case $1 in
+        --scene) scene=$2; shift 2 ;;
+        --steps) steps=$2; shift 2 ;;
+        --max-seconds) max_seconds=$2; shift 2 ;;
+        --sleep) sleep=$2; shift 2 ;;
+        --no-install) install=0; shift ;;
+        *) echo "usage: $0 [--scene S] [--steps N] [--max-seconds S] [--sleep on|off] [--no-install]" >&2; exit 2 ;;
+    esac
+done
+
+if [[ $install == 1 ]] && ! pkg-config --exists ode bullet 2>/dev/null; then
+    sudo=""
+    [[ $(id -u) == 0 ]] || sudo=sudo
+    $sudo apt-get install -y libode-dev libbullet-dev
+fi
+
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DAF_BUILD_BENCH=ON >/dev/null
+# Build what this tree has: the peers exist only where the packages are, af-bench-scene only once written.
+# (Makefiles list "... target", Ninja "target: phony".)
+available=$(cmake --build "$build" --target help | sed -n 's/^\.\.\. \([^ ]*\).*/\1/p; s/^\([^: ]*\): .*/\1/p')
+targets=()
+for t in af-bench-scene ode-bench-scene bullet-bench-scene bullet-f64-bench-scene; do
+    if grep -qx "$t" <<<"$available"; then targets+=("$t"); else echo "compare.sh: no target $t, skipped" >&2; fi
+done
+[[ ${#targets[@]} -gt 0 ]] || { echo "compare.sh: nothing to run" >&2; exit 1; }
+cmake --build "$build" -j"$jobs" --target "${targets[@]}" >/dev/null
+
+program() { find "$build" -type f -name "$1" -perm -u+x | head -n 1; }
+results=$(mktemp)
+trap 'rm -f "$results"' EXIT
+common=(--scene "$scene" --steps "$steps" --max-seconds "$max_seconds" --sleep "$sleep")
+for t in "${targets[@]}"; do
+    exe=$(program "$t")
+    case $t in
+        af-bench-scene) runs=("--solver exact" "--solver tree" "--solver pgs") ;;
+        ode-bench-scene) runs=("--variant dantzig" "--variant quickstep20") ;;
+        *) runs=("--variant si10" "--variant mlcp_dantzig") ;;
+    esac
+    for r in "${runs[@]}"; do
+        # shellcheck disable=SC2086 # r is two words on purpose
+        if ! "$exe" "${common[@]}" $r >>"$results"; then
+            echo "compare.sh: $t $r failed" >&2
+        fi
+    done
+done
+
+python3 - "$results" <<'PY'
+import json, sys
+rows = [json.loads(l) for l in open(sys.argv[1]) if l.strip().startswith("{")]
+def num(v, f):
+    return "-" if v is None else f.format(v)
+cols = [("engine", 18, "{}"), ("variant", 13, "{}"), ("us_mean", 9, "{:.1f}"), ("us_median", 9, "{:.1f}"),
+        ("joint_err_max_m", 15, "{:.4f}"), ("limit_viol_max", 14, "{:.4f}"),
+        ("ground_pen_max_m", 16, "{:.4f}"), ("rest_step", 9, "{}"), ("exploded", 8, "{}")]
+keys = {"us_mean": "us_per_step_mean", "us_median": "us_per_step_median", "limit_viol_max": "limit_viol_max_rad"}
+print(f"scene {rows[0]['scene'] if rows else '?'}: µs per step (step call only), errors over the run")
+print(" ".join(f"{c:>{w}}" for c, w, _ in cols))
+for r in rows:
+    cells = []
+    for c, w, f in cols:
+        v = r.get(keys.get(c, c))
+        if isinstance(v, bool): v = str(v).lower()
+        if c == "variant" and r.get("partial"): v = f"{v}*"
+        cells.append(f"{num(v, f):>{w}}")
+    print(" ".join(cells))
+if any(r.get("partial") for r in rows):
+    print("* partial: stopped by --max-seconds")
+si10 = [r for r in rows if r["engine"].startswith("bullet") and not r["engine"].endswith("f64") and r["variant"] == "si10"]
+ours = [r for r in rows if r["engine"].startswith("af")]
+if si10 and ours:
+    base = si10[0]["us_per_step_mean"]
+    print(f"\nmean µs/step relative to {si10[0]['engine']} si10 ({base:.1f} µs):")
+    for r in ours:
+        print(f"  {r['engine']} {r['variant']}: {r['us_per_step_mean'] / base:.2f}x")
+PY
