@@ -28,6 +28,7 @@ void ShakeCorrection::capture(const ConstraintRows& rows, const std::vector<Join
                               const RowSystem& system) {
     start_.clear();
     responses_.clear();
+    factorised_ = false;
     for (const JointRowRange& range : ranges)
         for (int r = 0; r < range.equalityRows; ++r) {
             const std::size_t i = static_cast<std::size_t>(range.first + r);
@@ -41,14 +42,15 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
     Step step;
     const Eigen::Index n = static_cast<Eigen::Index>(start_.size());
     if (n == 0) return step;
-    k_.setZero(n, n);
     drift_.resize(n);
+    if (!factorised_) k_.setZero(n, n);
     Eigen::Index i = 0;
     for (const JointRowRange& range : ranges)
         for (int r = 0; r < range.equalityRows; ++r, ++i) {
             const ConstraintRow& now = rows[static_cast<std::size_t>(range.first + r)];
             drift_[i] = now.error - start_[static_cast<std::size_t>(i)].error;
             step.drift = std::max(step.drift, std::abs(drift_[i]));
+            if (factorised_) continue;
             // K_ij: how row i's error moves per unit impulse along start row j.
             for (Eigen::Index j = 0; j < n; ++j) {
                 const ConstraintRow& s = start_[static_cast<std::size_t>(j)];
@@ -56,7 +58,12 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
                 k_(i, j) = along(now, s.bodyA, m.linearA, m.angularA) + along(now, s.bodyB, m.linearB, m.angularB);
             }
         }
-    lu_.compute(k_);
+    // Later steps after a capture reuse the first one's matrix (simplified Newton): the bodies
+    // have moved since only by a correction the size of the drift, which changes K by as little.
+    if (!factorised_) {
+        lu_.compute(k_);
+        factorised_ = true;
+    }
     lambda_ = lu_.solve(-drift_);
 
     linear_.resize(bodies.size());

@@ -37,6 +37,7 @@ public:
 
     // With `rows` written at the moved poses (same joints, so the same equality rows in the
     // same order), one Newton step: moves the bodies and changes their velocities by move / dt.
+    // The first step after a capture builds and factorises K; later ones reuse it.
     Step apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges, std::span<RigidBody> bodies,
                Real dt);
 
@@ -47,6 +48,7 @@ private:
     Eigen::Matrix<Real, Eigen::Dynamic, 1> drift_, lambda_;
     Eigen::PartialPivLU<Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>> lu_;
     std::vector<Vec3> linear_, angular_;
+    bool factorised_ = false;  // lu_ holds K of this capture
 };
 
 }  // namespace af
