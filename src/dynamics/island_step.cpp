@@ -27,7 +27,9 @@ void Island::step(Real dt, IslandContext& context) {
     writeRows(context);
     context.report.rows += static_cast<int>(rows_.size());
     allowApproach(dt);
-    system_.build(rows_, bodies_);
+    // The tree solver reads the rows themselves: A is built only if it cannot serve them.
+    system_.buildResponses(rows_, bodies_);
+    if (context.settings.solver != SolverKind::Tree) system_.buildMatrix(rows_);
     system_.setVelocityRhs(rows_, bodies_);
     if (solveVelocities(context) != LcpStatus::Solved) ++context.report.failures;
     system_.applyImpulses(rows_, bodies_);
@@ -75,14 +77,15 @@ void Island::allowApproach(Real dt) {
 // Warm-started from the rows with the same keys in the previous step. PGS running out of sweeps
 // is its normal way of stopping, not a failure.
 LcpStatus Island::solveVelocities(IslandContext& context) {
-    const LcpProblem problem = system_.problem();
     std::span<Real> x = system_.solution();
     std::span<LcpRowState> states = system_.states();
     context.velocityWarmStart.recall(rowKeys_, states, x);
     if (context.settings.solver == SolverKind::Tree) {
         if (solveWithTree(context)) return LcpStatus::Solved;
         ++context.report.treeFallbacks;
+        system_.buildMatrix(rows_);
     }
+    const LcpProblem problem = system_.problem();
     if (context.settings.solver == SolverKind::Pgs) {
         const LcpPgsResult r = pgs_.solve(problem, x);
         context.report.iterations = std::max(context.report.iterations, r.iterations);

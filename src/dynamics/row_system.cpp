@@ -11,10 +11,14 @@ Real dot6(const Vec3& l0, const Vec3& a0, const Vec3& l1, const Vec3& a1) { retu
 }  // namespace
 
 void RowSystem::build(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
+    buildResponses(rows, bodies);
+    buildMatrix(rows);
+}
+
+void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
     n_ = static_cast<int>(rows.size());
     const std::size_t n = rows.size();
     response_.resize(n);
-    a_.assign(n * n, 0);
     b_.assign(n, 0);
     lo_.resize(n);
     hi_.resize(n);
@@ -44,6 +48,11 @@ void RowSystem::build(const ConstraintRows& rows, std::span<const RigidBody> bod
         mu_[i] = r.frictionCoefficient;
         cfm_[i] = r.cfm;
     }
+}
+
+void RowSystem::buildMatrix(const ConstraintRows& rows) {
+    const std::size_t n = rows.size();
+    a_.assign(n * n, 0);
     // A_ij = Σ over the bodies rows i and j share of J_i · M⁻¹ J_jᵀ. Symmetric: fill both halves.
     for (std::size_t i = 0; i < n; ++i) {
         const ConstraintRow& ri = rows[i];

@@ -34,6 +34,10 @@ public:
     // Fills A, lo, hi, findex, mu and cfm from `rows` at the bodies' current inertia; b is left
     // to the caller (velocity or position level). Rows with include[i] false are left out.
     void build(const ConstraintRows& rows, std::span<const RigidBody> bodies);
+    // build in two parts: the responses, bounds and sizes (all that applying impulses needs,
+    // O(rows)), then A (O(rows²)), which only the dense solvers read.
+    void buildResponses(const ConstraintRows& rows, std::span<const RigidBody> bodies);
+    void buildMatrix(const ConstraintRows& rows);
 
     // b_i = target_i − Cdot_i(current velocities): the velocity problem.
     void setVelocityRhs(const ConstraintRows& rows, std::span<const RigidBody> bodies);
