@@ -1,0 +1,72 @@
+// af-bench-scene: our engine on the ragdoll benchmark of bench-scene.md, printing one JSON
+// object of RunMetrics (engine "af", variant = solver). Only world.step() is timed.
+
+#include "af_scene.h"
+#include "metrics.h"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Run the ragdoll benchmark scene (bench-scene.md) with the af engine; prints one JSON object."};
+    std::string scene = "single";
+    std::string solver = "exact";
+    std::string sleep = "off";
+    int steps = benchscene::kSteps;
+    double maxSeconds = 0;
+    app.add_option("--scene", scene, "single, grid4, grid16 or pile")
+        ->check(CLI::IsMember({"single", "grid4", "grid16", "pile"}));
+    app.add_option("--solver", solver, "exact, tree or pgs")->check(CLI::IsMember({"exact", "tree", "pgs"}));
+    app.add_option("--steps", steps, "steps of 1/60 s")->check(CLI::PositiveNumber);
+    app.add_option("--max-seconds", maxSeconds, "stop (partial) once the run has taken this long; 0: no limit")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--sleep", sleep, "let figures come to rest (on) or keep them awake (off)")
+        ->check(CLI::IsMember({"on", "off"}));
+    CLI11_PARSE(app, argc, argv);
+
+    const std::map<std::string, af::SolverKind> solvers = {
+        {"exact", af::SolverKind::Exact}, {"tree", af::SolverKind::Tree}, {"pgs", af::SolverKind::Pgs}};
+    const bool sleeping = sleep == "on";
+    af::World world = benchscene::buildAfWorld(scene, solvers.at(solver), sleeping);
+    const int ragdolls = static_cast<int>(world.figures().size());
+    benchscene::RunMetrics metrics(ragdolls);
+    std::vector<benchscene::BodyState> states;
+    benchscene::readStates(world, states);
+    metrics.setInitial(states);
+
+    const Clock::time_point start = Clock::now();
+    bool partial = false;
+    int treeFallbacks = 0;
+    for (int s = 0; s < steps; ++s) {
+        if (maxSeconds > 0 && seconds(Clock::now() - start) > maxSeconds) {
+            partial = true;
+            break;
+        }
+        const Clock::time_point t0 = Clock::now();
+        world.step();
+        const Clock::time_point t1 = Clock::now();
+        treeFallbacks += world.lastStep().treeFallbacks;
+        benchscene::readStates(world, states);
+        metrics.addStep(states, seconds(t1 - t0), world.maxPenetration());
+        if (sleeping) metrics.addSleep(world.atRest());
+    }
+    const std::string extra = "\"twist_limited\": false, \"solver_failures\": " +
+                              std::to_string(world.solverFailures()) +
+                              ", \"tree_fallbacks\": " + std::to_string(treeFallbacks) +
+                              ", \"sleep\": " + (sleeping ? "true" : "false");
+    std::cout << metrics.json("af", solver, scene, partial, extra) << "\n";
+    return 0;
+}

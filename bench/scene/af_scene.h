@@ -1,0 +1,48 @@
+#pragma once
+// Our engine on the benchmark scene (bench-scene.md): the ragdolls as af::Figures in SI units,
+// dropped on the plane z = 0, and the read-out of their bodies' states for RunMetrics.
+//
+// Joint mapping (§2 → af, figure.h / joints.h; body1 = the §2 child, body2 = the §2 parent, so
+// that limits carried by the parent constrain a shaft carried by the child, as in Doom's files):
+//  * fixed → Fixed.
+//  * hinge [lo, hi] → Hinge with a V limit of the same interval: the af hinge angle is the
+//    right-handed rotation of body1 relative to body2 about the axis, the §2 angle.
+//  * universal → Universal with both shafts along the thigh (a1 × a2, the locked twist axis of
+//    §2 in the T-pose) and a pyramid limit on the thigh's direction, centred on the direction at
+//    the middle of both ranges, half-widths half the ranges, its faces turned so that the first
+//    bends about a1 (abduction) and the second about a2 (flexion). Not an exact match: our
+//    universal is homokinetic (no relative twist about the shafts), not the Hooke joint of §2
+//    (a1 ⟂ q a2), and the pyramid's face angles equal the §2 angles only along its two central
+//    planes. The benchmark's own metrics show the difference.
+//  * ball, cone + twist → BallAndSocket with a cone limit: bone axis b on the child within the
+//    cone angle of the cone axis c on the parent. Our ball joint has NO twist limit (Doom's has
+//    none either), so twist is free: the JSON says "twist_limited": false.
+
+#include "metrics.h"
+#include "scene_def.h"
+
+#include "af/dynamics/world.h"
+#include "af/figure/figure.h"
+
+#include <string_view>
+#include <vector>
+
+namespace benchscene {
+
+inline constexpr double kMetresPerUnit = 0.0254;  // Doom's inch
+
+// WorldSettings in SI: g = 9.81 m/s² down, every length-bearing setting (contact margin and
+// slop, restitution threshold, impulse threshold, speed cap) scaled from Doom inches to metres.
+af::WorldSettings afWorldSettings(af::SolverKind solver, bool comeToRest);
+
+// One ragdoll placed as §3 says (velocities are not part of a Figure: see buildAfWorld).
+af::Figure afRagdoll(const Placement& placement);
+
+// The whole scene: the ground plane, one figure per placement, initial velocities of §3.
+af::World buildAfWorld(std::string_view scene, af::SolverKind solver, bool comeToRest);
+
+// Every body's state, ragdoll-major as RunMetrics wants it (out is resized, not reallocated once
+// large enough).
+void readStates(const af::World& world, std::vector<BodyState>& out);
+
+}  // namespace benchscene
