@@ -70,6 +70,7 @@ private:
     void projectPositions(IslandContext& context);
     bool moveWhileImproving(Real& violation, IslandContext& context);
     LcpStatus solvePositions();
+    bool solvePositionsWithTree(IslandContext& context);
     Real largestViolation() const;
 
     std::vector<int> bodyIds_;

@@ -209,6 +209,26 @@ LcpStatus Island::solvePositions() {
     return status;
 }
 
+// The tree solver's position answer, as the dense one's would be (see solveWithTree); its rows
+// are factorised without friction rows, which the position problem holds at 0. False when it
+// cannot serve these rows (the fallback is counted) or is not the chosen solver.
+bool Island::solvePositionsWithTree(IslandContext& context) {
+    if (context.settings.solver != SolverKind::Tree) return false;
+    if (!treeReady_) {
+        tree_.setStructure(bodies_, joints_);
+        treeReady_ = true;
+    }
+    tree_.factor(rows_, ranges_, bodies_, TreeProblems::PositionOnly);
+    const TreeSolveResult r = tree_.solvePosition(rows_);
+    if (r.status != LcpStatus::Solved) {
+        ++context.report.treeFallbacks;
+        return false;
+    }
+    const std::span<const Real> lambda = tree_.impulses();
+    std::copy(lambda.begin(), lambda.end(), system_.solution().begin());
+    return true;
+}
+
 // Two Newton steps of SHAKE (shake.h) close the in-step drift, which is O(dt²) to begin with.
 // They are kept only when they behave like a correction: the first move at most
 // kShakeTrust times the drift it closes, and the second step's drift a tenth of the first's.
@@ -249,9 +269,12 @@ void Island::projectPositions(IslandContext& context) {
                 rows_[i].frictionSource = -1;
                 rows_[i].lo = rows_[i].hi = 0;
             }
-        system_.build(rows_, bodies_);
-        system_.setPositionRhs(rows_);
-        if (solvePositions() != LcpStatus::Solved) ++context.report.failures;
+        system_.buildResponses(rows_, bodies_);
+        if (!solvePositionsWithTree(context)) {
+            system_.buildMatrix(rows_);
+            system_.setPositionRhs(rows_);
+            if (solvePositions() != LcpStatus::Solved) ++context.report.failures;
+        }
         if (!moveWhileImproving(violation, context)) return;
     }
 }
