@@ -64,7 +64,6 @@ private:
     void allowApproach(Real dt);
     LcpStatus solveVelocities(IslandContext& context);
     bool solveWithTree(IslandContext& context);
-    bool solveByBoxIteration(const LcpProblem& problem, IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
     void closeDrift(Real dt, IslandContext& context);
     void projectPositions(IslandContext& context);

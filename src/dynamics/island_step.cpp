@@ -11,8 +11,6 @@ namespace {
 constexpr Real kShakeTrust = 2;         // a SHAKE move may be at most this many times its drift
 constexpr Real kShakeTolerance = 1e-9;  // length units: drift this small counts as closed
 constexpr int kProjectionHalvings = 4;  // see projectPositions
-constexpr int kBoxPasses = 8;           // see solveByBoxIteration
-constexpr Real kBoxTolerance = 1e-9;    // relative change of a friction box that counts as none
 
 }  // namespace
 
@@ -92,49 +90,11 @@ LcpStatus Island::solveVelocities(IslandContext& context) {
         context.report.residual = std::max(context.report.residual, r.residual);
         return r.status == LcpStatus::NotConverged ? LcpStatus::Solved : r.status;
     }
-    if (solveByBoxIteration(problem, context)) return LcpStatus::Solved;
     const LcpResult r = exact_.solve(problem, x, states);
     context.report.pivots += r.pivots;
     context.report.residual = std::max(context.report.residual, r.residual);
     if (r.status != LcpStatus::Solved) solveWithFrozenFriction(problem, context);
     return r.status;
-}
-
-// Friction boxes follow their normals by fixed-point iteration: each pass freezes every box at
-// mu·|x_normal| of the last answer and solves that plain boxed LCP (convex, so the pivoting never
-// cycles), warm-started from the pattern before. When a pass leaves every box where it found it,
-// its answer is complementary with the coupled bounds too. False when that does not happen
-// within kBoxPasses; the coupled solve then starts from the last pattern.
-bool Island::solveByBoxIteration(const LcpProblem& problem, IslandContext& context) {
-    std::span<Real> x = system_.solution();
-    std::span<LcpRowState> states = system_.states();
-    const std::size_t n = static_cast<std::size_t>(problem.size);
-    frozenLo_.assign(problem.lo.begin(), problem.lo.end());
-    frozenHi_.assign(problem.hi.begin(), problem.hi.end());
-    LcpProblem frozen = problem;
-    frozen.lo = frozenLo_;
-    frozen.hi = frozenHi_;
-    frozen.findex = {};
-    frozen.mu = {};
-    for (int pass = 0; pass <= kBoxPasses; ++pass) {
-        Real change = 0, largest = 0;
-        for (std::size_t i = 0; i < n && !problem.findex.empty(); ++i) {
-            const int source = problem.findex[i];
-            if (source < 0) continue;
-            const Real box = problem.mu[i] * std::abs(x[static_cast<std::size_t>(source)]);
-            change = std::max(change, std::abs(box - frozenHi_[i]));
-            largest = std::max(largest, box);
-            frozenLo_[i] = -box;
-            frozenHi_[i] = box;
-        }
-        if (pass > 0 && change <= kBoxTolerance * (1 + largest)) return true;
-        if (pass == kBoxPasses) return false;
-        const LcpResult r = exact_.solve(frozen, x, states);
-        context.report.pivots += r.pivots;
-        context.report.residual = std::max(context.report.residual, r.residual);
-        if (r.status != LcpStatus::Solved) return false;
-    }
-    return false;
 }
 
 // The tree solver's answer is the dense one; its impulses go where the dense solve's would, so

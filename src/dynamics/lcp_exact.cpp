@@ -16,8 +16,18 @@
 // no pivots). A coupled problem that does not settle within maxCouplingPasses is reported as
 // NotConverged with the unsettled rows listed; the coupled problem can lack a solution when
 // friction is strong, and it need not be unique.
+//
+// A coupled problem with a guess first tries the frozen-box phase (frictionBoxPasses): friction
+// boxes frozen at mu·|x_normal| of the guess, then of each answer, each pass a plain boxed LCP
+// warm-started from the last pattern. Plain Dantzig on a convex problem never stalls, and when
+// the boxes stop moving the answer is complementary with the coupled bounds as well. The boxes
+// converge only linearly, so once a pass keeps the pattern of the pass before, or the passes
+// run out, the coupled passes take over from that pattern (usually in one pass, no pivots).
 
 #include "dynamics/lcp_internal.h"
+
+#include <algorithm>
+#include <cmath>
 
 namespace af {
 
@@ -53,6 +63,15 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
     }
     if (n == 0) {
         return result;
+    }
+
+    int boxPivots = 0;
+    if (!problem.findex.empty() && !ioStates.empty() && s.settings.frictionBoxPasses > 0) {
+        const LcpResult frozen = solveWithFrozenBoxes(problem, outX, ioStates);
+        if (frozen.status == LcpStatus::Solved) {
+            return frozen;
+        }
+        boxPivots = frozen.pivots;
     }
 
     s.load(problem, ioStates);
@@ -96,6 +115,60 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
         }
     }
     s.finish(problem, outX, ioStates, result, status);
+    result.pivots += boxPivots;
+    return result;
+}
+
+// Status Solved when the boxes settle (residual against the coupled problem); otherwise
+// NotConverged with ioStates holding the last pattern, and the pivots spent.
+LcpResult LcpExactSolver::solveWithFrozenBoxes(const LcpProblem& problem, std::span<Real> x,
+                                               std::span<LcpRowState> ioStates) {
+    Impl&             s = *impl_;
+    const std::size_t n = static_cast<std::size_t>(problem.size);
+    s.boxLo.assign(problem.lo.begin(), problem.lo.end());
+    s.boxHi.assign(problem.hi.begin(), problem.hi.end());
+    s.boxStates.assign(ioStates.begin(), ioStates.end());
+    LcpProblem frozen = problem;
+    frozen.lo = s.boxLo;
+    frozen.hi = s.boxHi;
+    frozen.findex = {};
+    frozen.mu = {};
+    LcpResult result;
+    result.status = LcpStatus::NotConverged;
+    for (int pass = 0; pass <= s.settings.frictionBoxPasses; ++pass) {
+        Real change = 0;
+        Real largest = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const int from = problem.findex[i];
+            if (from < 0) {
+                continue;
+            }
+            const Real normal = x[static_cast<std::size_t>(from)];
+            const Real box = problem.mu[i] * (std::isfinite(normal) ? std::abs(normal) : Real(0));
+            change = std::max(change, std::abs(box - s.boxHi[i]));
+            largest = std::max(largest, box);
+            s.boxLo[i] = -box;
+            s.boxHi[i] = box;
+        }
+        if (pass > 0 && change <= s.settings.tolerance * std::max(Real(1), largest)) {
+            std::copy(s.boxStates.begin(), s.boxStates.end(), ioStates.begin());
+            result.status = LcpStatus::Solved;
+            result.residual = s.settings.computeResidual ? lcpResidual(problem, x, s.settings.cfm) : 0;
+            return result;
+        }
+        if (pass == s.settings.frictionBoxPasses) {
+            break;
+        }
+        s.boxPattern.assign(s.boxStates.begin(), s.boxStates.end());
+        const LcpResult r = solve(frozen, x, s.boxStates);
+        result.pivots += r.pivots;
+        // A pattern that held through a pass is the coupled one, most likely: the coupled
+        // passes then solve it with the friction tied to the normals, exactly, without pivots.
+        if (r.status != LcpStatus::Solved || (pass > 0 && s.boxPattern == s.boxStates)) {
+            break;
+        }
+    }
+    std::copy(s.boxStates.begin(), s.boxStates.end(), ioStates.begin());
     return result;
 }
 

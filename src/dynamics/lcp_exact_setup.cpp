@@ -39,6 +39,10 @@ void LcpExactSolver::Impl::reserve(int size) {
     for (std::vector<Real>* v : {&x, &b, &lo, &hi, &w, &mu, &dx, &dw, &y, &tie}) {
         v->resize(n1);
     }
+    boxLo.reserve(n1);
+    boxHi.reserve(n1);
+    boxStates.reserve(n1);
+    boxPattern.reserve(n1);
     scratch.resize(3 * n1);
     for (std::vector<int>* v : {&perm, &posOf, &source, &linkSources, &linkPivot}) {
         v->resize(n1);

@@ -88,6 +88,10 @@ struct LcpExactSolver::Impl {
     LcpExactSettings settings;
     int              capacity = 0;
 
+    // The frozen-box phase of a coupled problem (lcp_exact.cpp): its bounds and row states.
+    std::vector<Real>        boxLo, boxHi;
+    std::vector<LcpRowState> boxStates, boxPattern;
+
     // The problem in position order. a is n×n with stride n and CFM already on its diagonal.
     int                  n = 0;
     std::vector<Real>    a, x, b, lo, hi, w, mu;

@@ -30,6 +30,7 @@ struct WarmStart {
     std::vector<std::uint64_t> keys;
     std::vector<int> bodyA, bodyB;
     std::vector<LcpRowState> states;
+    std::vector<Real> impulses;  // the guess of a coupled problem's friction boxes (lcp.h)
 };
 
 }  // namespace
@@ -172,6 +173,7 @@ void TreeSolver::Impl::warmStates(const ConstraintRows& rows, const WarmStart& s
         const bool same = p < start.keys.size() && start.keys[p] == key[r] && start.bodyA[p] == rows[r].bodyA &&
                           start.bodyB[p] == rows[r].bodyB;
         states[k] = same ? start.states[p] : LcpRowState::Unknown;
+        x[k] = same ? start.impulses[p] : 0;
     }
 }
 
@@ -181,6 +183,7 @@ void TreeSolver::Impl::remember(const ConstraintRows& rows, WarmStart& start) co
     start.bodyA.resize(n);
     start.bodyB.resize(n);
     start.states.assign(states.begin(), states.begin() + static_cast<std::ptrdiff_t>(n));
+    start.impulses.assign(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
     for (std::size_t k = 0; k < n; ++k) {
         const std::size_t r = static_cast<std::size_t>(auxRows[k]);
         start.keys[k] = key[r];

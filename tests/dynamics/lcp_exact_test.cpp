@@ -53,6 +53,56 @@ TEST(ExactLcp, SatisfiesCoupledFrictionBoundsOnRandomContactProblems) {
     EXPECT_GT(unique, 1900);  // coupling rarely admits several solutions here
 }
 
+TEST(ExactLcp, FrozenFrictionBoxesSettleOnTheCoupledSolution) {
+    // The world's way: frictionBoxPasses with a guess of states and impulses, here the answer to
+    // the same problem with b moved (the next step). The result must solve the coupled problem
+    // (the enumeration's solution when unique) whether or not the boxes settled.
+    Rng            rng(515);
+    LcpExactSolver plain;
+    LcpExactSolver boxed(LcpExactSettings{.frictionBoxPasses = 8});
+    int            unique = 0;
+    int            settledByBoxes = 0;  // without the coupled passes (couplingPasses 0)
+    for (int k = 0; k < 1000; ++k) {
+        const DenseLcp before = randomContactProblem(rng, 1 + k % 2, rng.below(3));
+        DenseLcp       after = before;
+        for (Real& v : after.b) v += 0.05 * (rng.uniform() - 0.5);
+        const ExactRun guess = solveExact(plain, before);
+        ASSERT_EQ(guess.result.status, LcpStatus::Solved) << "problem " << k;
+        ExactRun run;
+        run.x = guess.x;
+        run.states = guess.states;
+        run.result = boxed.solve(after.view(), run.x, run.states);
+        ASSERT_EQ(run.result.status, LcpStatus::Solved) << "problem " << k;
+        ASSERT_TRUE(isSolution(after, run.x, kTol)) << "problem " << k;
+        ASSERT_LE(run.result.residual, kTol) << "problem " << k;
+        settledByBoxes += run.result.couplingPasses == 0 ? 1 : 0;
+        const BruteForceResult bf = bruteForce(after);
+        if (bf.solutions.size() == 1) {
+            ++unique;
+            ASSERT_TRUE(near(run.x, bf.solutions[0], kTol)) << "problem " << k;
+        }
+    }
+    EXPECT_GT(unique, 900);
+    RecordProperty("settledByBoxes", settledByBoxes);
+    EXPECT_GT(settledByBoxes, 100);  // measured 150: the others' pattern held, the coupled passes finished
+}
+
+TEST(ExactLcp, FrozenFrictionBoxesFromTheirOwnSolutionNeedNoPivots) {
+    LcpExactSolver boxed(LcpExactSettings{.frictionBoxPasses = 8});
+    for (int seed = 1; seed <= 10; ++seed) {
+        const DenseLcp p = makeRagdollProblem(seed);
+        const ExactRun cold = solveExact(boxed, p);
+        ASSERT_EQ(cold.result.status, LcpStatus::Solved) << seed;
+        ExactRun warm;
+        warm.x = cold.x;
+        warm.states = cold.states;
+        warm.result = boxed.solve(p.view(), warm.x, warm.states);
+        ASSERT_EQ(warm.result.status, LcpStatus::Solved) << seed;
+        EXPECT_EQ(warm.result.pivots, 0) << seed;
+        EXPECT_TRUE(near(warm.x, cold.x, 1e-9)) << seed;
+    }
+}
+
 TEST(ExactLcp, SolvesDenseCoupledProblemsOrReportsTheRareOneThatDoesNotSettle) {
     // Random dense Gram matrices couple normals and friction far more strongly than bodies do.
     // The coupled problem is not a minimisation and pivoting can cycle on it; the passes break

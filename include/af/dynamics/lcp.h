@@ -108,6 +108,11 @@ struct LcpExactSettings {
     int maxCouplingPasses = 16;
     /// Compute LcpResult::residual against the original problem (one extra n×n product).
     bool computeResidual = true;
+    /// Coupled problems solved with a warm start may first freeze the friction boxes at the
+    /// guess and iterate them to a fixed point, at most this many plain boxed solves; see
+    /// solve(). 0 (the default): never. Worth it when the guess holds impulses as well as states
+    /// (World sets it: a tumbling figure's coupled drives cost far more than a few plain solves).
+    int frictionBoxPasses = 0;
 };
 
 /// Exact solver: Dantzig / principal pivoting on the boxed LCP with an incrementally updated
@@ -148,13 +153,17 @@ public:
 
     /// Solves `problem` into outX (size n). ioStates is empty (cold start, states not returned)
     /// or holds n entries: on input the warm-start guess (Unknown where there is none), on output
-    /// the final state of every row.
+    /// the final state of every row. With a warm start, outX on input is the guess of the
+    /// impulses (0 where there is none): a coupled problem's first friction boxes are mu times
+    /// its normals (frictionBoxPasses).
     LcpResult solve(const LcpProblem& problem, std::span<Real> outX,
                     std::span<LcpRowState> ioStates = {});
 
     struct Impl;
 
 private:
+    LcpResult solveWithFrozenBoxes(const LcpProblem& problem, std::span<Real> x, std::span<LcpRowState> ioStates);
+
     std::unique_ptr<Impl> impl_;
 };
 

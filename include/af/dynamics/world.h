@@ -5,11 +5,14 @@
 //  1. springs add their forces; every body's velocity is predicted with gravity and the
 //     external forces (integrateVelocity);
 //  2. the collision world finds the contact manifolds of the predicted motion (speculative:
-//     pairs closer than what the step can close get points, see contactMargin); every joint
+//     pairs closer than what the step can close get points, see contactMargin); awake bodies
+//     joined by joints, contact points or extra rows form islands, and each island runs 3–6 on
+//     its own contiguous copy of its bodies (two figures apart never share a solve); every joint
 //     writes its rows (equality, limits, joint friction), every contact point its normal and
 //     friction rows, and the extra row source, if any, adds its rows;
-//  3. the velocity LCP  J M⁻¹ Jᵀ λ = target − J v + w  is solved (exact pivoting or PGS, warm
-//     started from the previous step's pattern) and the impulses applied;
+//  3. the velocity LCP  J M⁻¹ Jᵀ λ = target − J v + w  is solved (exact pivoting, the tree
+//     solver or PGS, warm started from the previous step's pattern and impulses) and the
+//     impulses applied;
 //  4. positions are integrated with the new velocities, then air friction;
 //  5. SHAKE closes the drift the step's own motion opened in the joints, with impulses along
 //     the start-of-step constraint directions that move positions and velocities together
@@ -47,7 +50,8 @@ namespace af {
 // Exact: the dense pivoting solve of all rows. Tree: the same answer through the linear-time
 // factorisation of the joint trees (tree_solver.h), with the dense solve as its fallback
 // (rows that do not fit a tree, such as those of a world where some figures rest). Pgs:
-// projected Gauss–Seidel. The position projection always uses the dense pivoting solve.
+// projected Gauss–Seidel. The position projection uses the tree solver with Tree, the dense
+// pivoting solve otherwise.
 enum class SolverKind { Exact, Tree, Pgs };
 
 struct WorldSettings {
@@ -55,7 +59,7 @@ struct WorldSettings {
     Real timeStep = Real(1) / 60;      // s
     int substeps = 1;
     SolverKind solver = SolverKind::Exact;
-    LcpExactSettings exact;
+    LcpExactSettings exact{.frictionBoxPasses = 8};
     LcpPgsSettings pgs;
     IntegrationSettings integration;
     JointRowSettings rows;
