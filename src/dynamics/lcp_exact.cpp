@@ -21,13 +21,14 @@
 // boxes frozen at mu·|x_normal| of the guess, then of each answer, each pass a plain boxed LCP
 // warm-started from the last pattern. Plain Dantzig on a convex problem never stalls, and when
 // the boxes stop moving the answer is complementary with the coupled bounds as well. The boxes
-// converge only linearly, so once a pass keeps the pattern of the pass before, or the passes
-// run out, the coupled passes take over from that pattern (usually in one pass, no pivots).
+// converge only linearly, so once a pass keeps the pattern it started from, or the passes run
+// out, the coupled passes take over from that pattern (usually in one pass, no pivots).
 
 #include "dynamics/lcp_internal.h"
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace af {
 
@@ -160,11 +161,15 @@ LcpResult LcpExactSolver::solveWithFrozenBoxes(const LcpProblem& problem, std::s
             break;
         }
         s.boxPattern.assign(s.boxStates.begin(), s.boxStates.end());
+        // The frozen problems' residuals are not the answer's: only the final one is computed.
+        const bool residual = std::exchange(s.settings.computeResidual, false);
         const LcpResult r = solve(frozen, x, s.boxStates);
+        s.settings.computeResidual = residual;
         result.pivots += r.pivots;
-        // A pattern that held through a pass is the coupled one, most likely: the coupled
-        // passes then solve it with the friction tied to the normals, exactly, without pivots.
-        if (r.status != LcpStatus::Solved || (pass > 0 && s.boxPattern == s.boxStates)) {
+        // A pattern that held through a pass (the guess's included) is the coupled one, most
+        // likely: the coupled passes then solve it with the friction tied to the normals,
+        // exactly, without pivots.
+        if (r.status != LcpStatus::Solved || s.boxPattern == s.boxStates) {
             break;
         }
     }

@@ -61,7 +61,6 @@ TEST(ExactLcp, FrozenFrictionBoxesSettleOnTheCoupledSolution) {
     LcpExactSolver plain;
     LcpExactSolver boxed(LcpExactSettings{.frictionBoxPasses = 8});
     int            unique = 0;
-    int            settledByBoxes = 0;  // without the coupled passes (couplingPasses 0)
     for (int k = 0; k < 1000; ++k) {
         const DenseLcp before = randomContactProblem(rng, 1 + k % 2, rng.below(3));
         DenseLcp       after = before;
@@ -75,7 +74,6 @@ TEST(ExactLcp, FrozenFrictionBoxesSettleOnTheCoupledSolution) {
         ASSERT_EQ(run.result.status, LcpStatus::Solved) << "problem " << k;
         ASSERT_TRUE(isSolution(after, run.x, kTol)) << "problem " << k;
         ASSERT_LE(run.result.residual, kTol) << "problem " << k;
-        settledByBoxes += run.result.couplingPasses == 0 ? 1 : 0;
         const BruteForceResult bf = bruteForce(after);
         if (bf.solutions.size() == 1) {
             ++unique;
@@ -83,8 +81,6 @@ TEST(ExactLcp, FrozenFrictionBoxesSettleOnTheCoupledSolution) {
         }
     }
     EXPECT_GT(unique, 900);
-    RecordProperty("settledByBoxes", settledByBoxes);
-    EXPECT_GT(settledByBoxes, 100);  // measured 150: the others' pattern held, the coupled passes finished
 }
 
 TEST(ExactLcp, FrozenFrictionBoxesFromTheirOwnSolutionNeedNoPivots) {
