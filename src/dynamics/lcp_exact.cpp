@@ -17,12 +17,13 @@
 // NotConverged with the unsettled rows listed; the coupled problem can lack a solution when
 // friction is strong, and it need not be unique.
 //
-// A coupled problem with a guess first tries the frozen-box phase (frictionBoxPasses): friction
-// boxes frozen at mu·|x_normal| of the guess, then of each answer, each pass a plain boxed LCP
-// warm-started from the last pattern. Plain Dantzig on a convex problem never stalls, and when
-// the boxes stop moving the answer is complementary with the coupled bounds as well. The boxes
-// converge only linearly, so once a pass keeps the pattern it started from, or the passes run
-// out, the coupled passes take over from that pattern (usually in one pass, no pivots).
+// A coupled problem whose guess does not hold in the first pass tries the frozen-box phase
+// (frictionBoxPasses) before the coupled passes start over: friction boxes frozen at
+// mu·|x_normal| of the guess, then of each answer, each pass a plain boxed LCP warm-started from
+// the last pattern. Plain Dantzig on a convex problem never stalls, and when the boxes stop
+// moving the answer is complementary with the coupled bounds as well. The boxes converge only
+// linearly, so once a pass keeps the pattern it started from, or the passes run out, the
+// coupled passes take over from that pattern (usually in one pass, no pivots).
 
 #include "dynamics/lcp_internal.h"
 
@@ -66,14 +67,9 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
         return result;
     }
 
-    int boxPivots = 0;
-    if (!problem.findex.empty() && !ioStates.empty() && s.settings.frictionBoxPasses > 0) {
-        const LcpResult frozen = solveWithFrozenBoxes(problem, outX, ioStates);
-        if (frozen.status == LcpStatus::Solved) {
-            return frozen;
-        }
-        boxPivots = frozen.pivots;
-    }
+    // Pivots of the attempts before the last load: a guess that did not hold, the frozen boxes.
+    int  earlierPivots = 0;
+    bool tryFrozenBoxes = !problem.findex.empty() && !ioStates.empty() && s.settings.frictionBoxPasses > 0;
 
     s.load(problem, ioStates);
     LcpStatus status = LcpStatus::Solved;
@@ -100,6 +96,21 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
         if (released == 0 && s.nP == s.n) {
             break;
         }
+        if (tryFrozenBoxes) {
+            // The guess did not hold: look for the pattern with frozen boxes, then start over.
+            tryFrozenBoxes = false;
+            earlierPivots += s.pivots;
+            const LcpResult frozen = solveWithFrozenBoxes(problem, outX, ioStates);
+            if (frozen.status == LcpStatus::Solved) {
+                LcpResult settled = frozen;
+                settled.pivots += earlierPivots;
+                return settled;
+            }
+            earlierPivots += frozen.pivots;
+            s.load(problem, ioStates);
+            pass = 0;
+            continue;
+        }
         if (pass >= s.settings.maxCouplingPasses) {
             status = LcpStatus::NotConverged;  // released rows stay unprocessed: reported failed
             break;
@@ -116,7 +127,7 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
         }
     }
     s.finish(problem, outX, ioStates, result, status);
-    result.pivots += boxPivots;
+    result.pivots += earlierPivots;
     return result;
 }
 
