@@ -104,7 +104,7 @@ bool Island::solveWithTree(IslandContext& context) {
         tree_.setStructure(bodies_, joints_);
         treeReady_ = true;
     }
-    tree_.factor(rows_, ranges_, bodies_);
+    tree_.factor(rows_, ranges_, bodies_, TreeProblems::VelocityAndPosition, rowKeys_);
     const TreeSolveResult r = tree_.solveVelocity(rows_, bodies_);
     if (r.status != LcpStatus::Solved) return false;
     const std::span<const Real> lambda = tree_.impulses();
@@ -178,7 +178,7 @@ bool Island::solvePositionsWithTree(IslandContext& context) {
         tree_.setStructure(bodies_, joints_);
         treeReady_ = true;
     }
-    tree_.factor(rows_, ranges_, bodies_, TreeProblems::PositionOnly);
+    tree_.factor(rows_, ranges_, bodies_, TreeProblems::PositionOnly, rowKeys_);
     const TreeSolveResult r = tree_.solvePosition(rows_);
     if (r.status != LcpStatus::Solved) {
         ++context.report.treeFallbacks;

@@ -17,20 +17,26 @@ namespace {
 constexpr int kPrimary = -1;
 constexpr int kLeftOut = -2;  // a friction row, in a factorisation for the position problem only
 
-// A row's identity from step to step: joint k's row q of a kind, or the q-th row after the
-// joints' rows. Keys grow along the rows as World writes them, so matching is one merge.
+// A row's identity from step to step, unless the caller names the rows: joint k's row q of a
+// kind, or the q-th row after the joints' rows.
 enum class RowKind : std::uint64_t { Equality = 0, Limit = 1, Friction = 2, Other = 3 };
 
 std::uint64_t rowKey(std::uint64_t group, RowKind kind, std::uint64_t offset) {
     return (group << 24) | (static_cast<std::uint64_t>(kind) << 20) | offset;
 }
 
-// What the last solve of one problem ended with, to warm-start the next.
+// What the last solve of one problem ended with, to warm-start the next: one entry per
+// auxiliary row, sorted by key.
+struct WarmEntry {
+    std::uint64_t key;
+    int bodyA, bodyB;
+    LcpRowState state;
+    Real impulse;  // the guess of a coupled problem's friction boxes (lcp.h)
+    bool operator<(const WarmEntry& o) const { return key < o.key; }
+};
+
 struct WarmStart {
-    std::vector<std::uint64_t> keys;
-    std::vector<int> bodyA, bodyB;
-    std::vector<LcpRowState> states;
-    std::vector<Real> impulses;  // the guess of a coupled problem's friction boxes (lcp.h)
+    std::vector<WarmEntry> entries;
 };
 
 }  // namespace
@@ -59,7 +65,8 @@ struct TreeSolver::Impl {
     std::vector<Vec6> z, solution, bodyImpulse;
     WarmStart velocityStart, positionStart;
 
-    void classify(const ConstraintRows& rows, std::span<const JointRowRange> ranges);
+    void classify(const ConstraintRows& rows, std::span<const JointRowRange> ranges,
+                  std::span<const std::uint64_t> rowKeys);
     TreeSolveResult solve(const ConstraintRows& rows, WarmStart& start, bool position);
     bool setBounds(const ConstraintRows& rows, bool position);
     void warmStates(const ConstraintRows& rows, const WarmStart& start);
@@ -85,8 +92,8 @@ void TreeSolver::setStructure(std::span<const RigidBody> bodies, std::span<const
 }
 
 void TreeSolver::resetWarmStart() {
-    impl_->velocityStart.keys.clear();
-    impl_->positionStart.keys.clear();
+    impl_->velocityStart.entries.clear();
+    impl_->positionStart.entries.clear();
 }
 
 bool TreeSolver::isPrimary(int joint) const {
@@ -94,7 +101,8 @@ bool TreeSolver::isPrimary(int joint) const {
     return joint >= 0 && static_cast<std::size_t>(joint) < primary.size() && primary[static_cast<std::size_t>(joint)];
 }
 
-void TreeSolver::Impl::classify(const ConstraintRows& rows, std::span<const JointRowRange> ranges) {
+void TreeSolver::Impl::classify(const ConstraintRows& rows, std::span<const JointRowRange> ranges,
+                                std::span<const std::uint64_t> rowKeys) {
     const std::size_t n = rows.size();
     constexpr int kUnset = -3;
     auxIndex.assign(n, kUnset);
@@ -127,6 +135,7 @@ void TreeSolver::Impl::classify(const ConstraintRows& rows, std::span<const Join
     auxRows.clear();
     for (std::size_t r = 0; r < n; ++r) {
         if (auxIndex[r] == kUnset) key[r] = rowKey(ranges.size(), RowKind::Other, others++);
+        if (rowKeys.size() == n) key[r] = rowKeys[r];
         if (rows[r].frictionSource >= 0) friction[r] = 1;
         if (auxIndex[r] == kPrimary) continue;
         if (!withFriction && (friction[r] || (rows[r].lo == 0 && rows[r].hi == 0))) {
@@ -139,12 +148,13 @@ void TreeSolver::Impl::classify(const ConstraintRows& rows, std::span<const Join
 }
 
 void TreeSolver::factor(const ConstraintRows& rows, std::span<const JointRowRange> ranges,
-                        std::span<const RigidBody> bodies, TreeProblems problems) {
+                        std::span<const RigidBody> bodies, TreeProblems problems,
+                        std::span<const std::uint64_t> rowKeys) {
     Impl& s = *impl_;
     s.withFriction = problems == TreeProblems::VelocityAndPosition;
     s.valid = s.tree.factor(s.forest, rows, ranges, bodies);
     if (!s.valid) return;
-    s.classify(rows, ranges);
+    s.classify(rows, ranges, rowKeys);
     if (!s.valid) return;
     s.aux.build(s.tree, s.forest, rows, s.auxRows);
     s.lcp.reserve(static_cast<int>(s.auxRows.size()));
@@ -166,30 +176,24 @@ TreeSolveResult TreeSolver::solvePosition(const ConstraintRows& rows) {
 
 // Takes each auxiliary row's state from the last solve's row with the same identity and bodies.
 void TreeSolver::Impl::warmStates(const ConstraintRows& rows, const WarmStart& start) {
-    std::size_t p = 0;
     for (std::size_t k = 0; k < auxRows.size(); ++k) {
         const std::size_t r = static_cast<std::size_t>(auxRows[k]);
-        while (p < start.keys.size() && start.keys[p] < key[r]) ++p;
-        const bool same = p < start.keys.size() && start.keys[p] == key[r] && start.bodyA[p] == rows[r].bodyA &&
-                          start.bodyB[p] == rows[r].bodyB;
-        states[k] = same ? start.states[p] : LcpRowState::Unknown;
-        x[k] = same ? start.impulses[p] : 0;
+        const auto at = std::lower_bound(start.entries.begin(), start.entries.end(),
+                                         WarmEntry{key[r], 0, 0, LcpRowState::Unknown, 0});
+        const bool same = at != start.entries.end() && at->key == key[r] && at->bodyA == rows[r].bodyA &&
+                          at->bodyB == rows[r].bodyB;
+        states[k] = same ? at->state : LcpRowState::Unknown;
+        x[k] = same ? at->impulse : 0;
     }
 }
 
 void TreeSolver::Impl::remember(const ConstraintRows& rows, WarmStart& start) const {
-    const std::size_t n = auxRows.size();
-    start.keys.resize(n);
-    start.bodyA.resize(n);
-    start.bodyB.resize(n);
-    start.states.assign(states.begin(), states.begin() + static_cast<std::ptrdiff_t>(n));
-    start.impulses.assign(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
-    for (std::size_t k = 0; k < n; ++k) {
+    start.entries.clear();
+    for (std::size_t k = 0; k < auxRows.size(); ++k) {
         const std::size_t r = static_cast<std::size_t>(auxRows[k]);
-        start.keys[k] = key[r];
-        start.bodyA[k] = rows[r].bodyA;
-        start.bodyB[k] = rows[r].bodyB;
+        start.entries.push_back({key[r], rows[r].bodyA, rows[r].bodyB, states[k], x[k]});
     }
+    std::sort(start.entries.begin(), start.entries.end());
 }
 
 // Bounds and friction coupling of the auxiliary LCP; false for a box on a primary row (spec

@@ -28,6 +28,7 @@
 #include "af/dynamics/lcp.h"
 #include "af/dynamics/rigid_body.h"
 
+#include <cstdint>
 #include <memory>
 #include <span>
 
@@ -73,8 +74,12 @@ public:
     /// outside every range (contacts) are auxiliary. Keeps no reference to its arguments. Rows
     /// that do not fit the structure (a primary joint without 1 to 6 equality rows, or whose rows
     /// couple other bodies) make the solves return InvalidInput until the next factor().
+    /// `rowKeys`, when given (one per row), name the rows for the warm start, as World's keys
+    /// do (unique, stable while the row exists; see World's warm start); otherwise a row is
+    /// known by its joint and place, or by its place after the joints' rows.
     void factor(const ConstraintRows& rows, std::span<const JointRowRange> ranges, std::span<const RigidBody> bodies,
-                TreeProblems problems = TreeProblems::VelocityAndPosition);
+                TreeProblems problems = TreeProblems::VelocityAndPosition,
+                std::span<const std::uint64_t> rowKeys = {});
 
     /// The solves take the rows given to factor() (their targets, errors and bounds are read
     /// here, the rest was read there).
