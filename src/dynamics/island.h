@@ -12,6 +12,7 @@
 #include "af/dynamics/tree_solver.h"
 #include "af/dynamics/world.h"
 #include "contact_set.h"
+#include "row_pgs.h"
 #include "row_system.h"
 #include "shake.h"
 #include "warm_start.h"
@@ -71,6 +72,7 @@ private:
     LcpStatus solvePositions();
     bool solvePositionsWithTree(IslandContext& context);
     Real largestViolation() const;
+    bool large(const IslandContext& context) const { return rows_.size() > context.settings.exactRowLimit; }
 
     std::vector<int> bodyIds_;
     std::vector<int> jointIds_;
@@ -90,6 +92,7 @@ private:
     LcpExactSolver exactPosition_;
     TreeSolver tree_;
     LcpPgsSolver pgs_;
+    RowPgs rowPgs_;
     ShakeCorrection shake_;
     std::vector<RigidBody> beforeShake_;
     std::vector<RigidBody> beforeProjection_;

@@ -25,9 +25,9 @@ void Island::step(Real dt, IslandContext& context) {
     writeRows(context);
     context.report.rows += static_cast<int>(rows_.size());
     allowApproach(dt);
-    // The tree solver reads the rows themselves: A is built only if it cannot serve them.
+    // The tree solver and PGS read the rows themselves: A is built only for the dense solve.
     system_.buildResponses(rows_, bodies_);
-    if (context.settings.solver != SolverKind::Tree) system_.buildMatrix(rows_);
+    if (context.settings.solver == SolverKind::Exact && !large(context)) system_.buildMatrix(rows_);
     system_.setVelocityRhs(rows_, bodies_);
     if (solveVelocities(context) != LcpStatus::Solved) ++context.report.failures;
     system_.applyImpulses(rows_, bodies_);
@@ -78,18 +78,19 @@ LcpStatus Island::solveVelocities(IslandContext& context) {
     std::span<Real> x = system_.solution();
     std::span<LcpRowState> states = system_.states();
     context.velocityWarmStart.recall(rowKeys_, states, x);
+    if (large(context)) ++context.report.largeIslands;
+    if (context.settings.solver == SolverKind::Pgs || large(context)) {
+        const LcpPgsResult r = rowPgs_.solve(rows_, system_, bodies_.size(), x, context.settings.pgs);
+        context.report.iterations = std::max(context.report.iterations, r.iterations);
+        context.report.residual = std::max(context.report.residual, r.residual);
+        return r.status == LcpStatus::NotConverged ? LcpStatus::Solved : r.status;
+    }
     if (context.settings.solver == SolverKind::Tree) {
         if (solveWithTree(context)) return LcpStatus::Solved;
         ++context.report.treeFallbacks;
         system_.buildMatrix(rows_);
     }
     const LcpProblem problem = system_.problem();
-    if (context.settings.solver == SolverKind::Pgs) {
-        const LcpPgsResult r = pgs_.solve(problem, x);
-        context.report.iterations = std::max(context.report.iterations, r.iterations);
-        context.report.residual = std::max(context.report.residual, r.residual);
-        return r.status == LcpStatus::NotConverged ? LcpStatus::Solved : r.status;
-    }
     const LcpResult r = exact_.solve(problem, x, states);
     context.report.pivots += r.pivots;
     context.report.residual = std::max(context.report.residual, r.residual);
@@ -230,7 +231,13 @@ void Island::projectPositions(IslandContext& context) {
                 rows_[i].lo = rows_[i].hi = 0;
             }
         system_.buildResponses(rows_, bodies_);
-        if (!solvePositionsWithTree(context)) {
+        if (large(context)) {
+            system_.setPositionRhs(rows_);
+            std::span<Real> x = system_.solution();
+            positionCache_.recall(rowKeys_, system_.states(), x);
+            rowPgs_.solve(rows_, system_, bodies_.size(), x, context.settings.pgs);
+            positionCache_.remember(rowKeys_, system_.states(), x);
+        } else if (!solvePositionsWithTree(context)) {
             system_.buildMatrix(rows_);
             system_.setPositionRhs(rows_);
             if (solvePositions() != LcpStatus::Solved) ++context.report.failures;

@@ -107,7 +107,6 @@ TEST(CollisionScene, HumanoidDroppedFromAHundredUnitsLandsWithoutPenetratingOrJi
 TEST(CollisionScene, TwoHumanoidsDroppedOntoEachOtherPileUp) {
     WorldSettings settings;
     settings.comeToRest = false;  // resting figures look for no contacts; this test wants to see them
-    settings.solver = SolverKind::Pgs;  // two touching figures make one dense island (see world_rest_test)
     World world(settings);
     world.addFigure(humanoidAt(Vec3(0, 0, 20), 0, 90));
     world.addFigure(humanoidAt(Vec3(0, 0, 60), 0, 90));

@@ -50,8 +50,9 @@ namespace af {
 // Exact: the dense pivoting solve of all rows. Tree: the same answer through the linear-time
 // factorisation of the joint trees (tree_solver.h), with the dense solve as its fallback
 // (rows that do not fit a tree, such as those of a world where some figures rest). Pgs:
-// projected Gauss–Seidel. The position projection uses the tree solver with Tree, the dense
-// pivoting solve otherwise.
+// projected Gauss–Seidel on the rows (velocities only). The position projection uses the tree
+// solver with Tree, the dense pivoting solve otherwise. Islands beyond exactRowLimit rows use
+// PGS for both.
 enum class SolverKind { Exact, Tree, Pgs };
 
 struct WorldSettings {
@@ -61,6 +62,11 @@ struct WorldSettings {
     SolverKind solver = SolverKind::Exact;
     LcpExactSettings exact{.frictionBoxPasses = 8};
     LcpPgsSettings pgs;
+    // An island with more velocity rows than this is solved by PGS on its rows (velocities and
+    // positions), whatever `solver` says: a pivot of the exact solvers costs O(rows²) and their
+    // matrix O(rows²) memory, so a pile of many figures would take seconds per step. One
+    // figure's island (our humanoid: up to ~300 rows tumbling on the floor) stays exact.
+    std::size_t exactRowLimit = 400;
     IntegrationSettings integration;
     JointRowSettings rows;
     // Projection passes per step, at most; they stop once no row is violated by more than
@@ -89,6 +95,7 @@ struct StepReport {
     int failures = 0;              // solves of this step that did not report Solved
     int shakeRefusals = 0;         // substeps whose SHAKE correction was refused (world.cpp)
     int treeFallbacks = 0;         // Tree solver: substeps whose rows it could not serve (dense used)
+    int largeIslands = 0;          // islands of the last substep solved by PGS for exceeding exactRowLimit
 };
 
 // Appends rows for the current step (hand-made contacts in tests, drags in the console).
