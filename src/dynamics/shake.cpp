@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace af {
 
@@ -35,6 +36,54 @@ void ShakeCorrection::capture(const ConstraintRows& rows, const std::vector<Join
             start_.push_back(rows[i]);
             responses_.push_back(system.response(i));
         }
+    findBlocks();
+}
+
+namespace {
+
+int findRoot(std::vector<int>& parent, int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) {
+        parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+        i = parent[static_cast<std::size_t>(i)];
+    }
+    return i;
+}
+
+}  // namespace
+
+void ShakeCorrection::findBlocks() {
+    int bodies = 0;
+    for (const ConstraintRow& r : start_) bodies = std::max({bodies, r.bodyA + 1, r.bodyB + 1});
+    parent_.resize(static_cast<std::size_t>(bodies));
+    std::iota(parent_.begin(), parent_.end(), 0);
+    for (const ConstraintRow& r : start_)
+        if (r.bodyA != kWorldBody && r.bodyB != kWorldBody)
+            parent_[static_cast<std::size_t>(findRoot(parent_, r.bodyA))] = findRoot(parent_, r.bodyB);
+    // Blocks in the order of their first row; rows keep their order within a block.
+    blockOfRoot_.assign(static_cast<std::size_t>(bodies), -1);
+    blockOfRow_.resize(start_.size());
+    blockCount_ = 0;
+    for (std::size_t i = 0; i < start_.size(); ++i) {
+        const ConstraintRow& r = start_[i];
+        const int body = r.bodyA != kWorldBody ? r.bodyA : r.bodyB;
+        int& block = blockOfRoot_[static_cast<std::size_t>(findRoot(parent_, body))];
+        if (block < 0) block = static_cast<int>(blockCount_++);
+        blockOfRow_[i] = block;
+    }
+    if (blocks_.size() < blockCount_) blocks_.resize(blockCount_);
+    for (std::size_t b = 0; b < blockCount_; ++b) blocks_[b].size = 0;
+    for (const int b : blockOfRow_) ++blocks_[static_cast<std::size_t>(b)].size;
+    int first = 0;
+    for (std::size_t b = 0; b < blockCount_; ++b) {
+        blocks_[b].first = first;
+        first += blocks_[b].size;
+        blocks_[b].size = 0;
+    }
+    order_.resize(start_.size());
+    for (std::size_t i = 0; i < start_.size(); ++i) {
+        Block& block = blocks_[static_cast<std::size_t>(blockOfRow_[i])];
+        order_[static_cast<std::size_t>(block.first + block.size++)] = static_cast<int>(i);
+    }
 }
 
 ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
@@ -43,28 +92,39 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
     const Eigen::Index n = static_cast<Eigen::Index>(start_.size());
     if (n == 0) return step;
     drift_.resize(n);
-    if (!factorised_) k_.setZero(n, n);
+    lambda_.resize(n);
+    nowRow_.resize(start_.size());
     Eigen::Index i = 0;
     for (const JointRowRange& range : ranges)
         for (int r = 0; r < range.equalityRows; ++r, ++i) {
-            const ConstraintRow& now = rows[static_cast<std::size_t>(range.first + r)];
-            drift_[i] = now.error - start_[static_cast<std::size_t>(i)].error;
+            nowRow_[static_cast<std::size_t>(i)] = static_cast<std::size_t>(range.first + r);
+            drift_[i] = rows[nowRow_[static_cast<std::size_t>(i)]].error - start_[static_cast<std::size_t>(i)].error;
             step.drift = std::max(step.drift, std::abs(drift_[i]));
-            if (factorised_) continue;
-            // K_ij: how row i's error moves per unit impulse along start row j.
-            for (Eigen::Index j = 0; j < n; ++j) {
-                const ConstraintRow& s = start_[static_cast<std::size_t>(j)];
-                const RowResponse& m = responses_[static_cast<std::size_t>(j)];
-                k_(i, j) = along(now, s.bodyA, m.linearA, m.angularA) + along(now, s.bodyB, m.linearB, m.angularB);
-            }
         }
-    // Later steps after a capture reuse the first one's matrix (simplified Newton): the bodies
+    // Later steps after a capture reuse the first one's matrices (simplified Newton): the bodies
     // have moved since only by a correction the size of the drift, which changes K by as little.
-    if (!factorised_) {
-        lu_.compute(k_);
-        factorised_ = true;
+    for (std::size_t b = 0; b < blockCount_; ++b) {
+        Block& block = blocks_[b];
+        const int* rowsOfBlock = order_.data() + block.first;
+        if (!factorised_) {
+            block.k.resize(block.size, block.size);
+            for (int p = 0; p < block.size; ++p) {
+                // K_pq: how row p's error moves per unit impulse along start row q.
+                const ConstraintRow& now = rows[nowRow_[static_cast<std::size_t>(rowsOfBlock[p])]];
+                for (int q = 0; q < block.size; ++q) {
+                    const ConstraintRow& s = start_[static_cast<std::size_t>(rowsOfBlock[q])];
+                    const RowResponse& m = responses_[static_cast<std::size_t>(rowsOfBlock[q])];
+                    block.k(p, q) = along(now, s.bodyA, m.linearA, m.angularA) + along(now, s.bodyB, m.linearB, m.angularB);
+                }
+            }
+            block.lu.compute(block.k);
+        }
+        block.rhs.resize(block.size);
+        for (int p = 0; p < block.size; ++p) block.rhs[p] = -drift_[rowsOfBlock[p]];
+        block.rhs = block.lu.solve(block.rhs);
+        for (int p = 0; p < block.size; ++p) lambda_[rowsOfBlock[p]] = block.rhs[p];
     }
-    lambda_ = lu_.solve(-drift_);
+    factorised_ = true;
 
     linear_.resize(bodies.size());
     angular_.resize(bodies.size());

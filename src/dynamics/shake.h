@@ -42,13 +42,31 @@ public:
                Real dt);
 
 private:
+    using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+    using Vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
+    // K is block diagonal: rows of joints that share no body (through other joints) do not see
+    // each other. Each block (one figure, as a rule) is factorised on its own, so an island of
+    // many touching figures costs as many small factorisations, not one large one.
+    struct Block {
+        int first = 0, size = 0;  // positions in order_
+        Matrix k;
+        Eigen::PartialPivLU<Matrix> lu;
+        Vector rhs;
+    };
+    void findBlocks();
+
     std::vector<ConstraintRow> start_;
     std::vector<RowResponse> responses_;
-    Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> k_;
-    Eigen::Matrix<Real, Eigen::Dynamic, 1> drift_, lambda_;
-    Eigen::PartialPivLU<Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>> lu_;
+    std::vector<int> order_;         // captured rows grouped by block
+    std::vector<int> parent_;        // union-find over bodies
+    std::vector<int> blockOfRoot_;
+    std::vector<Block> blocks_;
+    std::size_t blockCount_ = 0;
+    std::vector<int> blockOfRow_;      // per captured row
+    std::vector<std::size_t> nowRow_;  // per captured row: its index in the rows given to apply
+    Vector drift_, lambda_;
     std::vector<Vec3> linear_, angular_;
-    bool factorised_ = false;  // lu_ holds K of this capture
+    bool factorised_ = false;  // the blocks hold K of this capture
 };
 
 }  // namespace af
