@@ -219,17 +219,7 @@ void Island::projectPositions(IslandContext& context) {
     writeRows(context);
     Real violation = largestViolation();
     for (int pass = 0; pass < context.settings.positionIterations && violation > context.settings.positionTolerance; ++pass) {
-        // Friction rows act on velocities only.
-        for (const JointRowRange& range : ranges_)
-            for (int r = 0; r < range.frictionRows; ++r) {
-                ConstraintRow& row = rows_[static_cast<std::size_t>(range.first + range.equalityRows + range.limitRows + r)];
-                row.lo = row.hi = 0;
-            }
-        for (std::size_t i = 0; i < rows_.size(); ++i)
-            if (rows_[i].frictionSource >= 0) {
-                rows_[i].frictionSource = -1;
-                rows_[i].lo = rows_[i].hi = 0;
-            }
+        holdFrictionAtZero(rows_, ranges_);
         system_.buildResponses(rows_, bodies_);
         if (large(context)) {
             system_.setPositionRhs(rows_);

@@ -8,6 +8,7 @@
 #include "af/dynamics/lcp.h"
 
 #include "dynamics/lcp_internal.h"
+#include "dynamics/pgs_sweeps.h"
 
 #include <algorithm>
 #include <cmath>
@@ -53,35 +54,13 @@ LcpPgsResult LcpPgsSolver::solve(const LcpProblem& problem, std::span<Real> ioX)
         invDiagonal_[i] = diag > 0 ? 1 / diag : 0;  // 0: the row cannot be relaxed; it stays put
     }
 
-    result.status = LcpStatus::NotConverged;
-    const Real omega = settings_.sor;
-    for (int it = 1; it <= settings_.maxIterations; ++it) {
-        Real maxChange = 0;
-        Real maxAbs = 0;
-        for (int i = 0; i < n; ++i) {
-            const Real inv = invDiagonal_[i];
-            if (inv == 0) {
-                continue;
-            }
-            const Real w =
-                lcp::dot(problem.a.data() + i * sn, ioX.data(), n) + cfmOf(i) * ioX[i] - problem.b[i];
-            Real lo, hi;
-            bounds(i, lo, hi);
-            const Real next = std::clamp(ioX[i] - omega * w * inv, lo, hi);
-            maxChange = std::max(maxChange, std::abs(next - ioX[i]));
-            maxAbs = std::max(maxAbs, std::abs(next));
-            ioX[i] = next;
-        }
-        result.iterations = it;
-        result.lastChange = maxChange;
-        if (maxChange <= settings_.tolerance * std::max(Real(1), maxAbs)) {
-            result.status = LcpStatus::Solved;
-            break;
-        }
-    }
-    if (settings_.maxIterations <= 0) {
-        result.status = LcpStatus::NotConverged;
-    }
+    pgsSweeps(
+        ioX, invDiagonal_, settings_,
+        [&](std::size_t i, Real& lo, Real& hi) { bounds(static_cast<int>(i), lo, hi); },
+        [&](std::size_t i) {
+            return lcp::dot(problem.a.data() + i * sn, ioX.data(), n) + cfmOf(static_cast<int>(i)) * ioX[i] - problem.b[i];
+        },
+        [](std::size_t, Real) {}, result);
     result.residual = settings_.computeResidual ? lcpResidual(problem, ioX, settings_.cfm) : 0;
     return result;
 }

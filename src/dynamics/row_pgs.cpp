@@ -1,5 +1,7 @@
 #include "row_pgs.h"
 
+#include "pgs_sweeps.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -59,55 +61,25 @@ LcpPgsResult RowPgs::solve(const ConstraintRows& rows, const RowSystem& system, 
         if (ioX[i] != 0) push(i, ioX[i]);
     }
 
-    result.status = LcpStatus::NotConverged;
-    const Real omega = settings.sor;
-    for (int it = 1; it <= settings.maxIterations; ++it) {
-        Real maxChange = 0;
-        Real maxAbs = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            const Real inv = invDiagonal_[i];
-            if (inv == 0) continue;
-            const ConstraintRow& r = rows[i];
-            Real jdv = 0;
-            if (r.bodyA != kWorldBody) {
-                const std::size_t a = static_cast<std::size_t>(r.bodyA);
-                jdv += along(r.linearA, r.angularA, linear_[a], angular_[a]);
-            }
-            if (r.bodyB != kWorldBody) {
-                const std::size_t b = static_cast<std::size_t>(r.bodyB);
-                jdv += along(r.linearB, r.angularB, linear_[b], angular_[b]);
-            }
-            const Real w = jdv + cfmOf(i) * ioX[i] - problem.b[i];
-            Real lo, hi;
-            bounds(i, lo, hi);
-            const Real next = std::clamp(ioX[i] - omega * w * inv, lo, hi);
-            const Real change = next - ioX[i];
-            if (change != 0) push(i, change);
-            maxChange = std::max(maxChange, std::abs(change));
-            maxAbs = std::max(maxAbs, std::abs(next));
-            ioX[i] = next;
-        }
-        result.iterations = it;
-        result.lastChange = maxChange;
-        if (maxChange <= settings.tolerance * std::max(Real(1), maxAbs)) {
-            result.status = LcpStatus::Solved;
-            break;
-        }
-    }
+    // w_i from the accumulated velocity changes of both bodies.
+    auto wOf = [&](std::size_t i) {
+        const ConstraintRow& r = rows[i];
+        Real w = cfmOf(i) * ioX[i] - problem.b[i];
+        if (r.bodyA != kWorldBody)
+            w += along(r.linearA, r.angularA, linear_[static_cast<std::size_t>(r.bodyA)],
+                       angular_[static_cast<std::size_t>(r.bodyA)]);
+        if (r.bodyB != kWorldBody)
+            w += along(r.linearB, r.angularB, linear_[static_cast<std::size_t>(r.bodyB)],
+                       angular_[static_cast<std::size_t>(r.bodyB)]);
+        return w;
+    };
+    pgsSweeps(ioX, invDiagonal_, settings, bounds, wOf, push, result);
     if (settings.computeResidual) {
         // The natural residual (lcp.h), with w from the accumulators of the final impulses.
         for (std::size_t i = 0; i < n; ++i) {
-            const ConstraintRow& r = rows[i];
-            Real w = cfmOf(i) * ioX[i] - problem.b[i];
-            if (r.bodyA != kWorldBody)
-                w += along(r.linearA, r.angularA, linear_[static_cast<std::size_t>(r.bodyA)],
-                           angular_[static_cast<std::size_t>(r.bodyA)]);
-            if (r.bodyB != kWorldBody)
-                w += along(r.linearB, r.angularB, linear_[static_cast<std::size_t>(r.bodyB)],
-                           angular_[static_cast<std::size_t>(r.bodyB)]);
             Real lo, hi;
             bounds(i, lo, hi);
-            result.residual = std::max(result.residual, std::abs(ioX[i] - std::clamp(ioX[i] - w, lo, hi)));
+            result.residual = std::max(result.residual, std::abs(ioX[i] - std::clamp(ioX[i] - wOf(i), lo, hi)));
         }
     }
     return result;

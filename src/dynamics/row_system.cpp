@@ -74,6 +74,19 @@ void RowSystem::buildMatrix(const ConstraintRows& rows) {
     }
 }
 
+void holdFrictionAtZero(ConstraintRows& rows, std::span<const JointRowRange> ranges) {
+    for (const JointRowRange& range : ranges)
+        for (int q = 0; q < range.frictionRows; ++q) {
+            ConstraintRow& row = rows[static_cast<std::size_t>(range.first + range.equalityRows + range.limitRows + q)];
+            row.lo = row.hi = 0;
+        }
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        if (rows[i].frictionSource >= 0) {
+            rows[i].frictionSource = -1;
+            rows[i].lo = rows[i].hi = 0;
+        }
+}
+
 Real rowVelocity(const ConstraintRow& r, std::span<const RigidBody> bodies) {
     Real cdot = 0;
     if (r.bodyA != kWorldBody) {

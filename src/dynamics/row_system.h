@@ -4,6 +4,7 @@
 // from step to step, so a step allocates nothing once the figure's row count has been seen.
 
 #include "af/dynamics/constraint_row.h"
+#include "af/dynamics/joints.h"
 #include "af/dynamics/lcp.h"
 #include "af/dynamics/rigid_body.h"
 
@@ -21,6 +22,10 @@ struct RowResponse {
 // velocity change, or the move, that the impulses λ cause.
 void accumulateResponses(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                          std::span<const Real> lambda, std::vector<Vec3>& linear, std::vector<Vec3>& angular);
+
+// The position problem's bounds: friction rows (joint friction, and rows boxed by another row)
+// act on velocities only, so they are held at 0 and uncoupled.
+void holdFrictionAtZero(ConstraintRows& rows, std::span<const JointRowRange> ranges);
 
 // Cdot of a row at the bodies' current velocities.
 Real rowVelocity(const ConstraintRow& row, std::span<const RigidBody> bodies);

@@ -69,7 +69,8 @@ struct World::State {
     void findContacts(Real dt);
     void findContactsOnce(Real dt);
     void buildIslands();
-    IslandContext context();
+    template <class Run>
+    void forEachIsland(Run run);
     void settleNewContacts();
 };
 

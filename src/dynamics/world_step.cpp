@@ -120,7 +120,19 @@ void World::State::buildIslands() {
     if (islands.size() < islandCount) islands.resize(islandCount);
 }
 
-IslandContext World::State::context() { return {settings, extraRows, bodies, report, warmStart}; }
+// Builds the islands of the current contact points, gathers each one and hands it to `run`,
+// which returns whether the island changed (and is written back).
+template <class Run>
+void World::State::forEachIsland(Run run) {
+    buildIslands();
+    IslandContext shared{settings, extraRows, bodies, report, warmStart};
+    const IslandWorld world{bodies, joints, contacts.points(), localOf};
+    for (std::size_t k = 0; k < islandCount; ++k) {
+        Island& island = islands[k];
+        island.gather(members[k].bodies, members[k].joints, members[k].points, world);
+        if (run(island, shared)) island.scatter(bodies, joints);
+    }
+}
 
 void World::State::substep(Real dt) {
     // The report tells of the last substep's velocity solves (summed over the islands).
@@ -136,15 +148,10 @@ void World::State::substep(Real dt) {
         b.force.setZero();
         b.torque.setZero();
     }
-    buildIslands();
-    IslandContext shared = context();
-    const IslandWorld world{bodies, joints, contacts.points(), localOf};
-    for (std::size_t k = 0; k < islandCount; ++k) {
-        Island& island = islands[k];
-        island.gather(members[k].bodies, members[k].joints, members[k].points, world);
+    forEachIsland([&](Island& island, IslandContext& shared) {
         island.step(dt, shared);
-        island.scatter(bodies, joints);
-    }
+        return true;
+    });
     warmStart.clear();
     for (std::size_t k = 0; k < islandCount; ++k) warmStart.add(islands[k].velocityWarmStart());
     warmStart.sort();
@@ -165,16 +172,11 @@ void World::State::settleNewContacts() {
     contacts.gather(manifolds, bodies, materials);
     const Real allowed = settings.contact.slop + kPenetrationTolerance;
     if (af::maxPenetration(contacts.points(), bodies) <= allowed) return;
-    buildIslands();
-    IslandContext shared = context();
-    const IslandWorld world{bodies, joints, contacts.points(), localOf};
-    for (std::size_t k = 0; k < islandCount; ++k) {
-        Island& island = islands[k];
-        island.gather(members[k].bodies, members[k].joints, members[k].points, world);
-        if (island.maxPenetration() <= allowed) continue;
+    forEachIsland([&](Island& island, IslandContext& shared) {
+        if (island.maxPenetration() <= allowed) return false;
         island.project(shared);
-        island.scatter(bodies, joints);
-    }
+        return true;
+    });
 }
 
 }  // namespace af

@@ -136,18 +136,7 @@ struct Dense {
 
 void solveDense(const Scene& scene, bool position, Dense& out) {
     ConstraintRows rows = scene.rows;
-    if (position) {
-        for (const JointRowRange& range : scene.ranges)
-            for (int q = 0; q < range.frictionRows; ++q) {
-                ConstraintRow& row = rows[static_cast<std::size_t>(range.first + range.equalityRows + range.limitRows + q)];
-                row.lo = row.hi = 0;
-            }
-        for (std::size_t i = 0; i < rows.size(); ++i)
-            if (rows[i].frictionSource >= 0) {
-                rows[i].frictionSource = -1;
-                rows[i].lo = rows[i].hi = 0;
-            }
-    }
+    if (position) holdFrictionAtZero(rows, scene.ranges);
     out.system.build(rows, scene.bodies);
     if (position) {
         out.system.setPositionRhs(rows);
