@@ -19,9 +19,7 @@
 
 #include "dynamics/row_system.h"
 
-#include "af/figure/figure.h"
-#include "af/text/af_parser.h"
-#include "af/text/md5.h"
+#include "hung_humanoid.h"
 
 #include <benchmark/benchmark.h>
 
@@ -60,20 +58,6 @@ constexpr Real kDt = Real(1) / 60;
 constexpr int kScenes = 60;
 constexpr int kSettle = 20;  // steps before the first scene
 
-af::Figure hungHumanoid() {
-    const std::string root = AF_SOURCE_DIR;
-    af::AFParseResult parsed = af::loadAFFile(root + "/af/humanoid.af");
-    const af::Md5AnimParseResult anim = af::loadMd5AnimFile(root + "/models/humanoid/af_pose.md5anim");
-    af::DeclAF decl = parsed.file.decls.at(0);
-    af::AFConstraint hang;
-    hang.type = af::ConstraintType::Fixed;
-    hang.name = "hang";
-    hang.body1 = "chest";
-    hang.body2 = "world";
-    decl.constraints.push_back(hang);
-    return *af::buildFigure(decl, af::skeletonFromMd5Anim(anim.anim, 0), "humanoid.af").figure;
-}
-
 struct Scene {
     std::vector<af::RigidBody> bodies;  // velocities predicted, before the constraint impulses
     af::ConstraintRows rows;
@@ -95,7 +79,7 @@ void writeRows(const std::vector<af::Joint>& joints, const std::vector<af::Rigid
 const Scenes& scenes() {
     static const Scenes all = [] {
         Scenes s;
-        const af::Figure figure = hungHumanoid();
+        const af::Figure figure = af::bench::hungHumanoid();
         for (const af::FigureBody& b : figure.bodies)
             s.spawn.push_back(af::RigidBody::dynamic(b.mass, b.inertia, b.pose.position, af::Quat(b.pose.rotation)));
         s.joints = af::makeJoints(figure);

@@ -2,9 +2,7 @@
 // solver: µs per 1/60 s step, joints, limits and joint friction included (no collision yet).
 
 #include "af/dynamics/world.h"
-#include "af/figure/figure.h"
-#include "af/text/af_parser.h"
-#include "af/text/md5.h"
+#include "hung_humanoid.h"
 
 #include <benchmark/benchmark.h>
 
@@ -12,20 +10,6 @@
 #include <string>
 
 namespace {
-
-af::Figure hungHumanoid() {
-    const std::string root = AF_SOURCE_DIR;
-    af::AFParseResult parsed = af::loadAFFile(root + "/af/humanoid.af");
-    const af::Md5AnimParseResult anim = af::loadMd5AnimFile(root + "/models/humanoid/af_pose.md5anim");
-    af::DeclAF decl = parsed.file.decls.at(0);
-    af::AFConstraint hang;
-    hang.type = af::ConstraintType::Fixed;
-    hang.name = "hang";
-    hang.body1 = "chest";
-    hang.body2 = "world";
-    decl.constraints.push_back(hang);
-    return *af::buildFigure(decl, af::skeletonFromMd5Anim(anim.anim, 0), "humanoid.af").figure;
-}
 
 af::World shaken(const af::Figure& figure, af::SolverKind solver) {
     af::WorldSettings settings;
@@ -40,7 +24,7 @@ af::World shaken(const af::Figure& figure, af::SolverKind solver) {
 
 void BM_HumanoidStep(benchmark::State& state) {
     const af::SolverKind solver = static_cast<af::SolverKind>(state.range(0));
-    const af::Figure figure = hungHumanoid();
+    const af::Figure figure = af::bench::hungHumanoid();
     af::World world = shaken(figure, solver);
     int steps = 0;
     for (auto _ : state) {

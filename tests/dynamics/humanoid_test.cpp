@@ -1,25 +1,12 @@
 // Our humanoid, hung from the world by its chest and shaken: joints hold and limits are kept.
 
 #include "../figure/figure_test_util.h"
-#include "world_test_util.h"
+#include "scene_test_util.h"
 
 #include <random>
 
 namespace af {
 namespace {
-
-Figure hungHumanoid() {
-    DeclAF decl = test::humanoidDecl();
-    AFConstraint hang;
-    hang.type = ConstraintType::Fixed;
-    hang.name = "hang";
-    hang.body1 = "chest";
-    hang.body2 = "world";
-    decl.constraints.push_back(hang);
-    const FigureResult r = buildFigure(decl, test::humanoidPose(), "humanoid.af");
-    EXPECT_TRUE(r.ok()) << r.formatDiagnostics();
-    return r.figure.value_or(Figure{});
-}
 
 void shake(World& world, unsigned seed) {
     std::mt19937 rng(seed);
@@ -28,7 +15,7 @@ void shake(World& world, unsigned seed) {
 }
 
 TEST(WorldHumanoid, HungByTheChestItSwingsTenSecondsWithTightJointsAndLimits) {
-    World world(hungHumanoid(), test::dynamicsOnly());
+    World world(test::hungHumanoid(), test::dynamicsOnly());
     shake(world, 3);
     Real worstJoint = 0, worstLimit = 0;
     for (int i = 0; i < 600; ++i) {
@@ -49,8 +36,8 @@ TEST(WorldHumanoid, HungByTheChestItSwingsTenSecondsWithTightJointsAndLimits) {
 TEST(WorldHumanoid, TreeSolverStepsLikeTheExactSolver) {
     WorldSettings treeSettings = test::dynamicsOnly();
     treeSettings.solver = SolverKind::Tree;
-    World exact(hungHumanoid(), test::dynamicsOnly());
-    World tree(hungHumanoid(), treeSettings);
+    World exact(test::hungHumanoid(), test::dynamicsOnly());
+    World tree(test::hungHumanoid(), treeSettings);
     shake(exact, 5);
     shake(tree, 5);
     int fallbacks = 0;

@@ -17,6 +17,20 @@ inline Figure humanoidAt(const Vec3& position, Real yawDegrees = 0, Real pitchDe
     return r.figure.value_or(Figure{});
 }
 
+// Our humanoid at its af_pose, hung from the world by its chest with a fixed joint.
+inline Figure hungHumanoid() {
+    DeclAF decl = humanoidDecl();
+    AFConstraint hang;
+    hang.type = ConstraintType::Fixed;
+    hang.name = "hang";
+    hang.body1 = "chest";
+    hang.body2 = "world";
+    decl.constraints.push_back(hang);
+    const FigureResult r = buildFigure(decl, humanoidPose(), "humanoid.af");
+    EXPECT_TRUE(r.ok()) << r.formatDiagnostics();
+    return r.figure.value_or(Figure{});
+}
+
 // One free box (its own figure) of half extents `half` centred at `centre`, density 0.01, with
 // contact friction μ.
 inline Figure freeBox(const Vec3& half, const Vec3& centre, Real friction = 0.8) {

@@ -8,7 +8,7 @@
 #include "af/dynamics/contact.h"
 #include "af/dynamics/tree_solver.h"
 #include "dynamics/row_system.h"
-#include "world_test_util.h"
+#include "scene_test_util.h"
 
 #include <algorithm>
 #include <random>
@@ -24,19 +24,6 @@ std::vector<RigidBody> bodiesOf(const Figure& figure) {
     for (const FigureBody& b : figure.bodies)
         out.push_back(RigidBody::dynamic(b.mass, b.inertia, b.pose.position, Quat(b.pose.rotation)));
     return out;
-}
-
-Figure hungHumanoid() {
-    DeclAF decl = test::humanoidDecl();
-    AFConstraint hang;
-    hang.type = ConstraintType::Fixed;
-    hang.name = "hang";
-    hang.body1 = "chest";
-    hang.body2 = "world";
-    decl.constraints.push_back(hang);
-    const FigureResult r = buildFigure(decl, test::humanoidPose(), "humanoid.af");
-    EXPECT_TRUE(r.ok()) << r.formatDiagnostics();
-    return r.figure.value_or(Figure{});
 }
 
 // A square of four bars joined by ball joints, pinned to the world at the middle of its top bar
@@ -209,7 +196,7 @@ TEST(TreeSolverStructure, AStaticBodyCountsAsTheWorld) {
 }
 
 TEST(TreeSolverStructure, APositionOnlyFactorisationRefusesTheVelocityProblem) {
-    Scene scene(hungHumanoid());
+    Scene scene(test::hungHumanoid());
     for (Joint& j : scene.joints) j.lastImpulse = 100;  // joint friction rows
     TreeSolver solver;
     solver.setStructure(scene.bodies, scene.joints);
@@ -249,7 +236,7 @@ TEST(TreeSolverStructure, DependentPrimaryRowsWithoutCfmAreReportedNotHidden) {
 }
 
 TEST(TreeSolverStructure, EveryJointOfTheHungHumanoidIsPrimaryItsWeldToTheWorldToo) {
-    Scene scene(hungHumanoid());
+    Scene scene(test::hungHumanoid());
     TreeSolver solver;
     solver.setStructure(scene.bodies, scene.joints);
     for (std::size_t k = 0; k < scene.joints.size(); ++k) EXPECT_TRUE(solver.isPrimary(static_cast<int>(k))) << scene.joints[k].name;
@@ -261,7 +248,7 @@ void report(const char* what, const Scene& scene, Real velocity, Real position) 
 }
 
 TEST(TreeSolverExact, HungHumanoidWithLimitsAndJointFrictionMatchesTheDenseSolve) {
-    Scene scene(hungHumanoid());
+    Scene scene(test::hungHumanoid());
     spin(scene, 3, 6);
     TreeSolver solver;
     solver.setStructure(scene.bodies, scene.joints);
@@ -346,7 +333,7 @@ TEST(TreeSolverExact, LoopsAndASecondPathToTheWorldMatchTheDenseSolve) {
 // None on the chest: welded to the world, it could only be pushed out of the floor against its
 // weld, an answer set by the CFM alone (λ ~ depth / CFM) and as ill-conditioned.
 TEST(TreeSolverExact, ContactsWithFrictionMatchTheDenseSolve) {
-    Scene scene(hungHumanoid());
+    Scene scene(test::hungHumanoid());
     spin(scene, 11, 4);
     TreeSolver solver;
     solver.setStructure(scene.bodies, scene.joints);
@@ -381,7 +368,7 @@ TEST(TreeSolverExact, ContactsWithFrictionMatchTheDenseSolve) {
 }
 
 TEST(TreeSolverExact, ImpulsesAndDisplacementsMoveBodiesAsTheDensePathDoes) {
-    Scene scene(hungHumanoid());
+    Scene scene(test::hungHumanoid());
     spin(scene, 13, 6);
     TreeSolver solver;
     solver.setStructure(scene.bodies, scene.joints);
@@ -419,7 +406,7 @@ TEST(TreeSolverExact, ImpulsesAndDisplacementsMoveBodiesAsTheDensePathDoes) {
 // rarely (a few times where a limit engages or a joint starts to slip), where a cold solve of
 // the same rows pivots through every row it finds at a bound.
 TEST(TreeSolverWarmStart, TheNextStepNeedsFewPivotsAndTheSameProblemNone) {
-    Scene scene(hungHumanoid());
+    Scene scene(test::hungHumanoid());
     spin(scene, 3, 6);
     TreeSolver solver;
     solver.setStructure(scene.bodies, scene.joints);
