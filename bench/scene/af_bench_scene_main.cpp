@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
 
     const Clock::time_point start = Clock::now();
     bool partial = false;
-    int treeFallbacks = 0;
+    int treeFallbacks = 0, projectionPasses = 0, shakeRefusals = 0;
     for (int s = 0; s < steps; ++s) {
         if (maxSeconds > 0 && seconds(Clock::now() - start) > maxSeconds) {
             partial = true;
@@ -59,6 +59,8 @@ int main(int argc, char** argv) {
         world.step();
         const Clock::time_point t1 = Clock::now();
         treeFallbacks += world.lastStep().treeFallbacks;
+        projectionPasses += world.lastStep().projectionPasses;
+        shakeRefusals += world.lastStep().shakeRefusals;
         benchscene::readStates(world, states);
         metrics.addStep(states, seconds(t1 - t0), world.maxPenetration());
         if (sleeping) metrics.addSleep(world.atRest());
@@ -66,6 +68,8 @@ int main(int argc, char** argv) {
     const std::string extra = "\"twist_limited\": false, \"solver_failures\": " +
                               std::to_string(world.solverFailures()) +
                               ", \"tree_fallbacks\": " + std::to_string(treeFallbacks) +
+                              ", \"projection_passes\": " + std::to_string(projectionPasses) +
+                              ", \"shake_refusals\": " + std::to_string(shakeRefusals) +
                               ", \"sleep\": " + (sleeping ? "true" : "false");
     std::cout << metrics.json("af", solver, scene, partial, extra) << "\n";
     return 0;

@@ -198,9 +198,10 @@ bool Island::solvePositionsWithTree(IslandContext& context) {
 void Island::closeDrift(Real dt, IslandContext& context) {
     beforeShake_.assign(bodies_.begin(), bodies_.end());
     writeRows(context);
-    const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt);
+    const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
+    if (first.drift <= kShakeTolerance) return;
     writeRows(context);
-    const ShakeCorrection::Step second = shake_.apply(rows_, ranges_, bodies_, dt);
+    const ShakeCorrection::Step second = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
     const bool wellConditioned = first.move <= kShakeTrust * first.drift + kShakeTolerance;
     const bool converging = second.drift <= 0.1 * first.drift + kShakeTolerance;
     if (!wellConditioned || !converging) {
@@ -219,6 +220,7 @@ void Island::projectPositions(IslandContext& context) {
     writeRows(context);
     Real violation = largestViolation();
     for (int pass = 0; pass < context.settings.positionIterations && violation > context.settings.positionTolerance; ++pass) {
+        ++context.report.projectionPasses;
         holdFrictionAtZero(rows_, ranges_);
         system_.buildResponses(rows_, bodies_);
         if (large(context)) {

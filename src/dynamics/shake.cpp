@@ -87,7 +87,7 @@ void ShakeCorrection::findBlocks() {
 }
 
 ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
-                                             std::span<RigidBody> bodies, Real dt) {
+                                             std::span<RigidBody> bodies, Real dt, Real closed) {
     Step step;
     const Eigen::Index n = static_cast<Eigen::Index>(start_.size());
     if (n == 0) return step;
@@ -101,6 +101,7 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
             drift_[i] = rows[nowRow_[static_cast<std::size_t>(i)]].error - start_[static_cast<std::size_t>(i)].error;
             step.drift = std::max(step.drift, std::abs(drift_[i]));
         }
+    if (step.drift <= closed) return step;
     // Later steps after a capture reuse the first one's matrices (simplified Newton): the bodies
     // have moved since only by a correction the size of the drift, which changes K by as little.
     for (std::size_t b = 0; b < blockCount_; ++b) {

@@ -37,9 +37,11 @@ public:
 
     // With `rows` written at the moved poses (same joints, so the same equality rows in the
     // same order), one Newton step: moves the bodies and changes their velocities by move / dt.
-    // The first step after a capture builds and factorises K; later ones reuse it.
+    // The first step after a capture builds and factorises K; later ones reuse it. A drift of
+    // at most `closed` (length units) is left as it is: nothing is factorised or moved (a
+    // resting figure).
     Step apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges, std::span<RigidBody> bodies,
-               Real dt);
+               Real dt, Real closed);
 
 private:
     using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;

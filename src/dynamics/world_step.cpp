@@ -136,7 +136,7 @@ void World::State::forEachIsland(Run run) {
 
 void World::State::substep(Real dt) {
     // The report tells of the last substep's velocity solves (summed over the islands).
-    report.rows = report.pivots = report.iterations = 0;
+    report.rows = report.pivots = report.iterations = report.largeIslands = report.projectionPasses = 0;
     report.residual = 0;
     for (const Joint& j : joints)
         if (j.type == ConstraintType::Spring && (awake(j.bodyA) || awake(j.bodyB))) applySpringForces(j, bodies);

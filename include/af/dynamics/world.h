@@ -96,6 +96,7 @@ struct StepReport {
     int shakeRefusals = 0;         // substeps whose SHAKE correction was refused (world.cpp)
     int treeFallbacks = 0;         // Tree solver: substeps whose rows it could not serve (dense used)
     int largeIslands = 0;          // islands of the last substep solved by PGS for exceeding exactRowLimit
+    int projectionPasses = 0;      // position projection passes of the last substep (all islands)
 };
 
 // Appends rows for the current step (hand-made contacts in tests, drags in the console).
