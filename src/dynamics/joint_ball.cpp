@@ -1,5 +1,5 @@
 // Ball-and-socket joint: the point part (joint_parts.cpp), a cone or pyramid limit on the shaft
-// (joint_shaft_limits.cpp) and joint friction.
+// (joint_shaft_limits.cpp), a twist limit (joint_twist_limit.cpp) and joint friction.
 //
 //     C = pA − pB (3 rows),  J_i = [ e_i │ rA × e_i │ −e_i │ e_i × rB ]
 //
@@ -17,6 +17,7 @@ JointRowRange writeBallRows(const Joint& joint, const Pair& pair, const JointRow
     writePointRows(pair, pair.a.point(joint.anchorA), pair.b.point(joint.anchorB), settings.jointCfm, out);
     range.equalityRows = 3;
     range.limitRows = writeShaftLimitRows(joint, pair, settings, out);
+    range.limitRows += writeTwistLimitRows(joint, pair, settings, out);
     if (const Real bound = frictionBound(joint); bound > 0) {
         for (int k = 0; k < 3; ++k) writeAngularFrictionRow(pair, Vec3::Unit(k), bound, settings.frictionCfm, out);
         range.frictionRows = 3;

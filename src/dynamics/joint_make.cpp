@@ -62,6 +62,19 @@ void setShaftLimit(const Figure& figure, const FigureConstraint& c, const SpawnF
     }
 }
 
+// Twist references that agree at spawn (joint_twist_limit.cpp): one ⟂ B's axis, and its image
+// on A's shaft by the shortest arc.
+void setTwistLimit(const FigureConstraint& c, const SpawnFrame& a, const SpawnFrame& b, Joint& j) {
+    if (c.twistLimit <= 0) return;
+    const Vec3 shaft = c.shafts[0].normalized();
+    const Vec3 axis = c.limit == LimitType::Cone ? Vec3(c.limitAxis.normalized()) : shaft;
+    const Vec3 referenceB = perpendicular(axis);
+    j.twistHalfAngle = radians(c.twistLimit);
+    j.twistAxisB = b.localDirection(axis);
+    j.twistReferenceB = b.localDirection(referenceB);
+    j.twistReferenceA = a.localDirection(Quat::FromTwoVectors(axis, shaft) * referenceB);
+}
+
 // Fixed and slider: where B holds A's centre of mass, and A's orientation in B's frame.
 void setRelativePose(const SpawnFrame& a, const SpawnFrame& b, Joint& j) {
     j.anchorA = Vec3::Zero();
@@ -84,6 +97,7 @@ Joint makeJoint(const Figure& figure, const FigureConstraint& c) {
         j.anchorB = b.localPoint(c.anchor);
         j.limitShaft = a.localDirection(c.shafts[0]);
         setShaftLimit(figure, c, b, j);
+        setTwistLimit(c, a, b, j);
         j.friction = c.friction;
         break;
     case ConstraintType::Universal: {

@@ -71,6 +71,12 @@ int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSett
 // How far the shaft is past its cone or pyramid, radians (0 inside).
 Real shaftLimitViolation(const Joint& joint, const Pair& pair);
 
+// Twist limit rows of a ball-and-socket joint (joint_twist_limit.cpp); returns how many were
+// written. The twist angle, radians, and how far it is past the limit (0 inside or unlimited).
+int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out);
+Real twistAngleOf(const Joint& joint, const Pair& pair);
+Real twistLimitViolation(const Joint& joint, const Pair& pair);
+
 // A friction row on the relative angular velocity (ωA − ωB)·axis, boxed by ±bound.
 void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Real relativeCfm, ConstraintRows& out);
 // The friction bound f·|λ_previous|, 0 when the joint has no friction this step.

@@ -58,6 +58,7 @@ Real limitViolationDegrees(const Joint& joint, std::span<const RigidBody> bodies
     const Pair pair = pairOf(joint, bodies);
     switch (joint.type) {
     case ConstraintType::BallAndSocket:
+        return degrees(std::max(shaftLimitViolation(joint, pair), twistLimitViolation(joint, pair)));
     case ConstraintType::Universal: return degrees(shaftLimitViolation(joint, pair));
     case ConstraintType::Hinge: return degrees(hingeLimitViolation(joint, pair));
     default: return 0;
@@ -65,6 +66,8 @@ Real limitViolationDegrees(const Joint& joint, std::span<const RigidBody> bodies
 }
 
 Real hingeAngle(const Joint& joint, std::span<const RigidBody> bodies) { return hingeAngleOf(joint, pairOf(joint, bodies)); }
+
+Real twistAngle(const Joint& joint, std::span<const RigidBody> bodies) { return twistAngleOf(joint, pairOf(joint, bodies)); }
 
 Real springLength(const Joint& joint, std::span<const RigidBody> bodies) {
     return springLengthOf(joint, pairOf(joint, bodies));

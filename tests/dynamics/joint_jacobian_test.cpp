@@ -99,6 +99,24 @@ TEST(JointJacobian, BallPyramidLimitRowsAreTheDerivativeOfTheirErrors) {
         5);
 }
 
+TEST(JointJacobian, BallTwistLimitRowsAreTheDerivativeOfTheirErrors) {
+    // Both twist rows (allLimitRows), with a cone axis and without one (B's copy of the shaft).
+    // The cone axis stays within ~45° of the shaft, so the knocked poses keep b·c > −1.
+    for (const LimitType limit : {LimitType::Cone, LimitType::None}) {
+        expectDerivatives(
+            [limit](Random& r, int body2) {
+                FigureConstraint c = withAnchor(ConstraintType::BallAndSocket, r, body2);
+                c.shafts[0] = r.direction();
+                c.limit = limit;
+                c.limitAxis = r.turn(0.8) * c.shafts[0];
+                c.limitAngles = {120, 0, 0};
+                c.twistLimit = 40;
+                return c;
+            },
+            limit == LimitType::Cone ? 6 : 5);
+    }
+}
+
 FigureConstraint universal(Random& r, int body2, LimitType limit) {
     FigureConstraint c = withAnchor(ConstraintType::Universal, r, body2);
     c.shafts[0] = r.direction();

@@ -183,6 +183,33 @@ TEST(JointLimit, HingeLimitRowAppearsWithinTheMarginAndTurnsBack) {
     }
 }
 
+TEST(JointLimit, BallTwistIsTheTurnAboutTheShaftWithTheSwingTakenOut) {
+    // Hanging along −Z, cone axis −Z, twist limit ±30°. Turn the bob about its own shaft by τ,
+    // then swing it by σ about a horizontal axis: the twist is τ whatever the swing, and a row
+    // appears within the margin of ±30°, one per side.
+    FigureConstraint c = constraintOf(ConstraintType::BallAndSocket, kWorld);
+    c.anchor = Vec3::Zero();
+    c.limit = LimitType::Cone;
+    c.limitAxis = Vec3(0, 0, -1);
+    c.shafts[0] = Vec3(0, 0, -1);
+    c.limitAngles = {170, 0, 0};
+    c.twistLimit = 30;
+    const Joint j = makeJoints(twoBodyFigure(kHanging, {}, c)).at(0);
+    for (const Real swing : {0.0, 25.0, 70.0})
+        for (const Real twist : {-45.0, -29.0, 0.0, 12.0, 29.9, 31.0}) {
+            SCOPED_TRACE(testing::Message() << "swing " << swing << ", twist " << twist);
+            std::vector<RigidBody> bodies = {bodyAt(kHanging), bodyAt({})};
+            turnBodyAbout(bodies, 0, Quat(Eigen::AngleAxis<Real>(rad(twist), Vec3(0, 0, -1))), Vec3::Zero());
+            turnBodyAbout(bodies, 0, Quat(Eigen::AngleAxis<Real>(rad(swing), Vec3(1, 1, 0).normalized())), Vec3::Zero());
+            EXPECT_NEAR(twistAngle(j, bodies), rad(twist), 1e-11);
+            EXPECT_NEAR(limitViolationDegrees(j, bodies), std::max(0.0, std::fabs(twist) - 30), 1e-9);
+            const LimitRows r = limitRows(j, bodies);
+            const Real marginDegrees = kLimitMarginRadians * 180 / kPi;
+            EXPECT_EQ(r.range.limitRows, 30 - std::fabs(twist) < marginDegrees ? 1 : 0);
+            if (r.range.limitRows == 1 && std::fabs(twist) > 30) expectRowLeadsBackInside(j, bodies, r.limit());
+        }
+}
+
 TEST(JointLimit, UniversalLimitActsOnShaftOne) {
     FigureConstraint c = constraintOf(ConstraintType::Universal, kWorld);
     c.anchor = Vec3::Zero();

@@ -93,6 +93,16 @@ struct Joint {
     PyramidLimit pyramid;
     HingeLimit hinge;
 
+    // Ball and socket, our extension (Doom's decl has none): A's twist about its shaft relative
+    // to B, swing taken out (joint_twist_limit.cpp), stays within ±twistHalfAngle of its spawn
+    // twist; 0 (or ≥ π): no limit. twistAxisB is B's axis (the cone axis, or B's copy of the
+    // shaft at spawn); the references, ⟂ the shaft in A's frame and ⟂ twistAxisB in B's, agree
+    // at spawn.
+    Real twistHalfAngle = 0;
+    Vec3 twistAxisB = Vec3::UnitZ();
+    Vec3 twistReferenceA = Vec3::UnitX();
+    Vec3 twistReferenceB = Vec3::UnitX();
+
     SpringParameters spring;
 
     Real friction = 0;     // joint friction coefficient (ball, universal, hinge)
@@ -153,6 +163,9 @@ Real limitViolationDegrees(const Joint& joint, std::span<const RigidBody> bodies
 // The hinge angle: right-handed rotation of A relative to B about B's copy of the axis,
 // radians in (−π, π], 0 at spawn.
 Real hingeAngle(const Joint& joint, std::span<const RigidBody> bodies);
+// Ball and socket: the twist angle of A about its shaft relative to B, swing taken out,
+// radians in (−π, π], 0 at spawn (defined whether or not the twist is limited).
+Real twistAngle(const Joint& joint, std::span<const RigidBody> bodies);
 // Spring length |anchor2 − anchor1|.
 Real springLength(const Joint& joint, std::span<const RigidBody> bodies);
 

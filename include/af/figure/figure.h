@@ -63,6 +63,9 @@ struct FigureConstraint {
     Vec3 limitAxis = -Vec3::UnitZ();
     Real3 limitAngles{};
     Real friction = 0;
+    // Ball and socket, our extension (not in Doom's decl, so .af files leave it 0): the shaft
+    // may twist about itself up to this many degrees either way from its spawn twist.
+    Real twistLimit = 0;
     Real stretch = 0, compress = 0, damping = 0, restLength = 0, minLength = 0, maxLength = 0;
     SourceLocation where;
 };

@@ -1,0 +1,75 @@
+// Twist limit of a ball-and-socket joint (our extension; Doom's decl has none): how far the
+// shaft body (A) has turned about its own shaft relative to B, once the swing is taken out.
+//
+// b = RA·limitShaft is A's shaft and c = RB·twistAxisB B's axis (the cone axis, or B's copy of
+// the shaft at spawn). The swing is the shortest arc S(b→c); rA = RA·twistReferenceA ⟂ b and
+// rB = RB·twistReferenceB ⟂ c are references that agree at spawn (rA = S(c→b)·rB). The twist is
+// the angle from rB to S(b→c)·rA about c (the swing-twist decomposition's twist):
+//     θ = atan2((rB × r')·c, rB·r'),   r' = S(b→c)·rA.
+// Its rate is the relative angular velocity along the bisector-weighted axis
+//     dθ/dt = (ωA − ωB)·k,   k = (b + c)/(1 + b·c),
+// (along b and c alike when b = c, and no rate from a pure swing, ⟂ both); undefined only at
+// b = −c, which a cone limit keeps away from.
+//
+// Rows, one-sided, written within the margin of a limit as the others are:
+//     upper: C = α − θ ≥ 0,  J = [0 │ −k │ 0 │ k];   lower: C = α + θ ≥ 0,  J = [0 │ k │ 0 │ −k]
+
+#include "joint_parts.h"
+
+#include <algorithm>
+
+namespace af::joint_detail {
+namespace {
+
+constexpr Real kPi = std::numbers::pi_v<Real>;
+
+// The rotation taking unit `from` to unit `to` by the shortest arc, applied to v.
+Vec3 alongShortestArc(const Vec3& from, const Vec3& to, const Vec3& v) {
+    return Quat::FromTwoVectors(from, to) * v;
+}
+
+struct TwistState {
+    Real angle = 0;
+    Vec3 rate = Vec3::Zero();  // k: dθ/dt = (ωA − ωB)·k
+};
+
+TwistState twistState(const Joint& joint, const Pair& pair) {
+    const Vec3 b = pair.a.direction(joint.limitShaft).normalized();
+    const Vec3 c = pair.b.direction(joint.twistAxisB);
+    const Vec3 swungBack = alongShortestArc(b, c, pair.a.direction(joint.twistReferenceA));
+    const Vec3 reference = pair.b.direction(joint.twistReferenceB);
+    TwistState s;
+    s.angle = std::atan2(reference.cross(swungBack).dot(c), reference.dot(swungBack));
+    s.rate = (b + c) / std::max(Real(1e-9), 1 + b.dot(c));
+    return s;
+}
+
+bool limited(const Joint& joint) { return joint.twistHalfAngle > 0 && joint.twistHalfAngle < kPi; }
+
+}  // namespace
+
+int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
+    if (!limited(joint)) return 0;
+    const TwistState s = twistState(joint, pair);
+    int written = 0;
+    const Real upper = joint.twistHalfAngle - s.angle;
+    if (upper < settings.limitMargin) {
+        addRow(pair, {Vec3::Zero(), -s.rate, Vec3::Zero(), s.rate}, upper, 0, kInfinity, settings.limitCfm, out);
+        ++written;
+    }
+    const Real lower = joint.twistHalfAngle + s.angle;
+    if (lower < settings.limitMargin) {
+        addRow(pair, {Vec3::Zero(), s.rate, Vec3::Zero(), -s.rate}, lower, 0, kInfinity, settings.limitCfm, out);
+        ++written;
+    }
+    return written;
+}
+
+Real twistLimitViolation(const Joint& joint, const Pair& pair) {
+    if (!limited(joint)) return 0;
+    return std::max(Real(0), std::fabs(twistState(joint, pair).angle) - joint.twistHalfAngle);
+}
+
+Real twistAngleOf(const Joint& joint, const Pair& pair) { return twistState(joint, pair).angle; }
+
+}  // namespace af::joint_detail
