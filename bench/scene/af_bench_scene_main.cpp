@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
         metrics.addStep(states, seconds(t1 - t0), world.maxPenetration());
         if (sleeping) metrics.addSleep(world.atRest());
     }
-    const std::string extra = "\"twist_limited\": false, \"solver_failures\": " +
+    const std::string extra = "\"twist_limited\": true, \"solver_failures\": " +
                               std::to_string(world.solverFailures()) +
                               ", \"tree_fallbacks\": " + std::to_string(treeFallbacks) +
                               ", \"projection_passes\": " + std::to_string(projectionPasses) +

@@ -82,6 +82,7 @@ af::FigureConstraint makeConstraint(const JointDef& j, const Placement& pl) {
             c.limit = af::LimitType::Cone;
             c.limitAxis = R * j.axis1;        // the cone axis, on the parent
             c.limitAngles = {2 * j.hi1 * kDegPerRad, 0, 0};  // Doom's cone angle is the full apex angle
+            c.twistLimit = j.hi2 * kDegPerRad;                   // our extension: ±twist about the bone
             break;
     }
     return c;
