@@ -73,6 +73,10 @@ private:
     bool solvePositionsWithTree(IslandContext& context);
     Real largestViolation() const;
     bool large(const IslandContext& context) const { return rows_.size() > context.settings.exactRowLimit; }
+    // Whether PGS solves this island's velocities.
+    bool iterative(const IslandContext& context) const {
+        return context.settings.solver == SolverKind::Pgs || large(context);
+    }
 
     std::vector<int> bodyIds_;
     std::vector<int> jointIds_;
