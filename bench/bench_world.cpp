@@ -42,8 +42,9 @@ void BM_HumanoidStep(benchmark::State& state) {
 }
 BENCHMARK(BM_HumanoidStep)
     ->Arg(static_cast<int>(af::SolverKind::Exact))
+    ->Arg(static_cast<int>(af::SolverKind::Tree))
     ->Arg(static_cast<int>(af::SolverKind::Pgs))
-    ->ArgName("solver(0=exact,1=pgs)")
+    ->ArgName("solver(0=exact,1=tree,2=pgs)")
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
