@@ -72,7 +72,14 @@ private:
     LcpStatus solvePositions();
     bool solvePositionsWithTree(IslandContext& context);
     Real largestViolation() const;
-    bool large(const IslandContext& context) const { return rows_.size() > context.settings.exactRowLimit; }
+    // Beyond exactRowLimit rows of a pivoting solve: all rows for the dense solve, the rows
+    // outside the joint trees' equality rows for the tree solver.
+    bool large(const IslandContext& context) const {
+        std::size_t pivoted = rows_.size();
+        if (context.settings.solver == SolverKind::Tree)
+            for (const JointRowRange& range : ranges_) pivoted -= static_cast<std::size_t>(range.equalityRows);
+        return pivoted > context.settings.exactRowLimit;
+    }
     // Whether PGS solves this island's velocities.
     bool iterative(const IslandContext& context) const {
         return context.settings.solver == SolverKind::Pgs || large(context);

@@ -62,10 +62,12 @@ struct WorldSettings {
     SolverKind solver = SolverKind::Exact;
     LcpExactSettings exact{.frictionBoxPasses = 8};
     LcpPgsSettings pgs;
-    // An island with more velocity rows than this is solved by PGS on its rows (velocities and
-    // positions), whatever `solver` says: a pivot of the exact solvers costs O(rows²) and their
-    // matrix O(rows²) memory, so a pile of many figures would take seconds per step. One
-    // figure's island (our humanoid: up to ~300 rows tumbling on the floor) stays exact.
+    // An island whose pivoting solve would have more rows than this is solved by PGS on its rows
+    // (velocities and positions), whatever `solver` says: a pivot costs O(rows²) and the dense
+    // matrices O(rows²) memory, so a pile of many figures would take seconds per step. The rows
+    // counted are all of them for Exact, those outside the joints' equality rows for Tree (the
+    // Schur complement's). One figure's island (our humanoid: up to ~300 rows tumbling on the
+    // floor) stays exact; with Tree, two figures touching do too.
     std::size_t exactRowLimit = 400;
     IntegrationSettings integration;
     JointRowSettings rows;
