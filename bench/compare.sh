@@ -65,9 +65,11 @@ rows = [json.loads(l) for l in open(sys.argv[1]) if l.strip().startswith("{")]
 def num(v, f):
     return "-" if v is None else f.format(v)
 cols = [("engine", 18, "{}"), ("variant", 13, "{}"), ("us_mean", 9, "{:.1f}"), ("us_median", 9, "{:.1f}"),
-        ("joint_err_max_m", 15, "{:.4f}"), ("limit_viol_max", 14, "{:.4f}"),
-        ("ground_pen_max_m", 16, "{:.4f}"), ("rest_step", 9, "{}"), ("exploded", 8, "{}")]
-keys = {"us_mean": "us_per_step_mean", "us_median": "us_per_step_median", "limit_viol_max": "limit_viol_max_rad"}
+        ("joint_err_max_m", 15, "{:.3g}"), ("limit_viol_max", 14, "{:.3g}"),
+        ("ground_pen_max_m", 16, "{:.3g}"), ("energy_gain_J", 13, "{:.3g}"), ("rest_step", 9, "{}"),
+        ("exploded", 8, "{}")]
+keys = {"us_mean": "us_per_step_mean", "us_median": "us_per_step_median", "limit_viol_max": "limit_viol_max_rad",
+        "energy_gain_J": "energy_gain_max_J"}
 print(f"scene {rows[0]['scene'] if rows else '?'}: µs per step (step call only), errors over the run")
 print(" ".join(f"{c:>{w}}" for c, w, _ in cols))
 for r in rows:
@@ -84,7 +86,9 @@ si10 = [r for r in rows if r["engine"].startswith("bullet") and not r["engine"].
 ours = [r for r in rows if r["engine"].startswith("af")]
 if si10 and ours:
     base = si10[0]["us_per_step_mean"]
-    print(f"\nmean µs/step relative to {si10[0]['engine']} si10 ({base:.1f} µs):")
+    median = si10[0]["us_per_step_median"]
+    print(f"\nµs/step relative to {si10[0]['engine']} si10 (mean {base:.1f} µs, median {median:.1f} µs):")
     for r in ours:
-        print(f"  {r['engine']} {r['variant']}: {r['us_per_step_mean'] / base:.2f}x")
+        print(f"  {r['engine']} {r['variant']}: mean {r['us_per_step_mean'] / base:.2f}x, "
+              f"median {r['us_per_step_median'] / median:.2f}x")
 PY
