@@ -4,6 +4,7 @@
 // rest is still solved every step.
 
 #include "af_scene.h"
+#include "world_steps.h"
 
 #include <benchmark/benchmark.h>
 
@@ -11,19 +12,7 @@ namespace {
 
 void BM_RagdollDropStep(benchmark::State& state) {
     const af::SolverKind solver = static_cast<af::SolverKind>(state.range(0));
-    af::World world = benchscene::buildAfWorld("single", solver, false);
-    int steps = 0;
-    for (auto _ : state) {
-        if (steps++ == benchscene::kSteps) {
-            state.PauseTiming();
-            world = benchscene::buildAfWorld("single", solver, false);
-            steps = 1;
-            state.ResumeTiming();
-        }
-        world.step();
-    }
-    state.counters["rows"] = world.lastStep().rows;
-    state.counters["joint_error"] = world.maxJointError();
+    af::bench::stepWorlds(state, [&] { return benchscene::buildAfWorld("single", solver, false); }, benchscene::kSteps);
 }
 BENCHMARK(BM_RagdollDropStep)
     ->Arg(static_cast<int>(af::SolverKind::Exact))

@@ -3,6 +3,7 @@
 
 #include "af/dynamics/world.h"
 #include "hung_humanoid.h"
+#include "world_steps.h"
 
 #include <benchmark/benchmark.h>
 
@@ -25,20 +26,8 @@ af::World shaken(const af::Figure& figure, af::SolverKind solver) {
 void BM_HumanoidStep(benchmark::State& state) {
     const af::SolverKind solver = static_cast<af::SolverKind>(state.range(0));
     const af::Figure figure = af::bench::hungHumanoid();
-    af::World world = shaken(figure, solver);
-    int steps = 0;
-    for (auto _ : state) {
-        // Ten simulated seconds from the same shaken start, again and again.
-        if (steps++ == 600) {
-            state.PauseTiming();
-            world = shaken(figure, solver);
-            steps = 1;
-            state.ResumeTiming();
-        }
-        world.step();
-    }
-    state.counters["rows"] = world.lastStep().rows;
-    state.counters["joint_error"] = world.maxJointError();
+    // Ten simulated seconds from the same shaken start, again and again.
+    af::bench::stepWorlds(state, [&] { return shaken(figure, solver); }, 600);
 }
 BENCHMARK(BM_HumanoidStep)
     ->Arg(static_cast<int>(af::SolverKind::Exact))
