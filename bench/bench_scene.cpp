@@ -14,11 +14,6 @@ void BM_RagdollDropStep(benchmark::State& state) {
     const af::SolverKind solver = static_cast<af::SolverKind>(state.range(0));
     af::bench::stepWorlds(state, [&] { return benchscene::buildAfWorld("single", solver, false); }, benchscene::kSteps);
 }
-BENCHMARK(BM_RagdollDropStep)
-    ->Arg(static_cast<int>(af::SolverKind::Exact))
-    ->Arg(static_cast<int>(af::SolverKind::Tree))
-    ->Arg(static_cast<int>(af::SolverKind::Pgs))
-    ->ArgName("solver(0=exact,1=tree,2=pgs)")
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RagdollDropStep)->Apply(af::bench::eachSolver);
 
 }  // namespace

@@ -17,38 +17,15 @@
 
 #include "af/dynamics/tree_solver.h"
 
+#include "allocation_counter.h"
 #include "dynamics/row_system.h"
-
 #include "hung_humanoid.h"
 
 #include <benchmark/benchmark.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <random>
 #include <string>
 #include <vector>
-
-// Counts the program's allocations, to show that a warmed-up solve makes none.
-namespace {
-std::atomic<long> gAllocations{0};
-}  // namespace
-
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-void* operator new(std::size_t size) {
-    ++gAllocations;
-    if (void* p = std::malloc(size > 0 ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 
 namespace {
 
@@ -133,7 +110,7 @@ void dense(benchmark::State& state, bool warm) {
     for (auto _ : state) {
         const Scene& scene = all.steps[k];
         k = (k + 1) % all.steps.size();
-        const long before = gAllocations.load();
+        const long before = af::test::gAllocations.load();
         system.build(scene.rows, scene.bodies);
         system.setVelocityRhs(scene.rows, scene.bodies);
         const std::span<af::LcpRowState> states = system.states();
@@ -141,7 +118,7 @@ void dense(benchmark::State& state, bool warm) {
         if (warm && previous.size() == states.size()) std::copy(previous.begin(), previous.end(), states.begin());
         const af::LcpResult r = solver.solve(system.problem(), system.solution(), states);
         previous.assign(states.begin(), states.end());
-        allocations += gAllocations.load() - before;
+        allocations += af::test::gAllocations.load() - before;
         benchmark::DoNotOptimize(system.solution().data());
         pivots += r.pivots;
         ++solves;
@@ -165,14 +142,14 @@ void tree(benchmark::State& state, TreeCase which) {
     for (auto _ : state) {
         const Scene& scene = all.steps[k];
         k = (k + 1) % all.steps.size();
-        const long before = gAllocations.load();
+        const long before = af::test::gAllocations.load();
         solver.factor(scene.rows, scene.ranges, scene.bodies,
                       which == TreeCase::FactorPositionOnly ? af::TreeProblems::PositionOnly
                                                             : af::TreeProblems::VelocityAndPosition);
         af::TreeSolveResult r;
         if (which == TreeCase::Cold) solver.resetWarmStart();
         if (which == TreeCase::Cold || which == TreeCase::Warm) r = solver.solveVelocity(scene.rows, scene.bodies);
-        allocations += gAllocations.load() - before;
+        allocations += af::test::gAllocations.load() - before;
         benchmark::DoNotOptimize(solver.impulses().data());
         pivots += r.pivots;
         auxiliary = std::max(auxiliary, r.auxiliaryRows);
@@ -191,9 +168,9 @@ void treeSolveOnly(benchmark::State& state, bool position) {
     af::TreeSolveResult r = position ? solver.solvePosition(scene.rows) : solver.solveVelocity(scene.rows, scene.bodies);
     long pivots = 0, solves = 0, allocations = 0;
     for (auto _ : state) {
-        const long before = gAllocations.load();
+        const long before = af::test::gAllocations.load();
         r = position ? solver.solvePosition(scene.rows) : solver.solveVelocity(scene.rows, scene.bodies);
-        allocations += gAllocations.load() - before;
+        allocations += af::test::gAllocations.load() - before;
         benchmark::DoNotOptimize(solver.impulses().data());
         pivots += r.pivots;
         ++solves;

@@ -29,11 +29,6 @@ void BM_HumanoidStep(benchmark::State& state) {
     // Ten simulated seconds from the same shaken start, again and again.
     af::bench::stepWorlds(state, [&] { return shaken(figure, solver); }, 600);
 }
-BENCHMARK(BM_HumanoidStep)
-    ->Arg(static_cast<int>(af::SolverKind::Exact))
-    ->Arg(static_cast<int>(af::SolverKind::Tree))
-    ->Arg(static_cast<int>(af::SolverKind::Pgs))
-    ->ArgName("solver(0=exact,1=tree,2=pgs)")
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HumanoidStep)->Apply(af::bench::eachSolver);
 
 }  // namespace

@@ -18,6 +18,15 @@ constexpr Real kTol = 1e-9;
 
 RigidPose poseOf(const BodyShape& s) { return {s.origin, s.rotation}; }
 
+// A named pair of posed shapes.
+struct Case {
+    const char* name;
+    const Polytope& a;
+    RigidPose poseA;
+    const Polytope& b;
+    RigidPose poseB;
+};
+
 TEST(ShapeContact, BoneLyingOnABoxTouchesWithItsLowestCorner) {
     ShapeSpec spec;
     spec.kind = ShapeKind::bone;
@@ -169,13 +178,6 @@ TEST(ContactIds, SurviveASmallTranslationAndRotation) {
     const Polytope big = box(Vec3(20, 20, 5));
     const Polytope barX = box(Vec3(10, 2, 2));
     const Polytope barY = box(Vec3(2, 10, 2));
-    struct Case {
-        const char* name;
-        const Polytope& a;
-        RigidPose poseA;
-        const Polytope& b;
-        RigidPose poseB;
-    };
     const std::vector<Case> cases = {
         {"small box on big", small, pose(Vec3(1, 2, 6.45), rotation(Vec3::UnitZ(), 10)), big, pose(Vec3::Zero())},
         // Hanging over the big box's corner: two points are crossings of the two faces' edges.
@@ -204,13 +206,6 @@ TEST(ContactSymmetry, SwappingTheShapesFlipsTheNormalAndKeepsThePoints) {
     const Polytope cube = box(Vec3(5, 5, 5));
     const Polytope bar = box(Vec3(10, 2, 2));
     const Polytope dodeca = makeDodecahedron(Vec3(-4, -4, -4), Vec3(4, 4, 4));
-    struct Case {
-        const char* name;
-        const Polytope& a;
-        RigidPose poseA;
-        const Polytope& b;
-        RigidPose poseB;
-    };
     const std::vector<Case> cases = {
         {"stacked", cube, pose(Vec3(0, 0, 9.9)), cube, pose(Vec3::Zero())},
         {"offset stack", cube, pose(Vec3(3, -2, 9.9), rotation(Vec3::UnitZ(), 20)), cube, pose(Vec3::Zero())},

@@ -2,37 +2,12 @@
 // rows no x can satisfy, the pivot and pass caps, malformed problems, and the promise that a
 // solve allocates nothing once the workspace is reserved.
 
+#include "allocation_counter.h"
 #include "lcp_test_util.h"
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
-
-// Counts every allocation of the test program, so a test can tell that a solve made none.
-// GCC takes the replaced pair for the library's and warns that malloc'ed memory meets delete.
-namespace {
-std::atomic<long> gAllocations{0};
-}  // namespace
-
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-void* operator new(std::size_t size) {
-    ++gAllocations;
-    if (void* p = std::malloc(size > 0 ? size : 1)) {
-        return p;
-    }
-    throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 
 namespace af {
 namespace {
@@ -204,11 +179,11 @@ TEST(ExactLcpDegenerate, AllocatesNothingInsideASolveAfterReserve) {
     const LcpProblem         coldView = cold.view();
     const LcpProblem         nextView = next.view();
 
-    const long before = gAllocations.load();
+    const long before = test::gAllocations.load();
     const LcpResult first = solver.solve(coldView, x, states);
     const LcpResult second = solver.solve(nextView, x, states);
     const LcpPgsResult third = pgs.solve(nextView, x);
-    const long after = gAllocations.load();
+    const long after = test::gAllocations.load();
     EXPECT_EQ(first.status, LcpStatus::Solved);
     EXPECT_EQ(second.status, LcpStatus::Solved);
     EXPECT_NE(third.status, LcpStatus::InvalidInput);
