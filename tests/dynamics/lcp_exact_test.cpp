@@ -55,8 +55,8 @@ TEST(ExactLcp, SatisfiesCoupledFrictionBoundsOnRandomContactProblems) {
 
 TEST(ExactLcp, FrozenFrictionBoxesSettleOnTheCoupledSolution) {
     // The world's way: frictionBoxPasses with a guess of states and impulses, here the answer to
-    // the same problem with b moved (the next step). The result must solve the coupled problem
-    // (the enumeration's solution when unique) whether or not the boxes settled.
+    // the same problem with b moved (the next step), and with no guess. The result must solve the
+    // coupled problem (the enumeration's solution when unique) whether or not the boxes settled.
     Rng            rng(515);
     LcpExactSolver plain;
     LcpExactSolver boxed(LcpExactSettings{.frictionBoxPasses = 8});
@@ -75,9 +75,18 @@ TEST(ExactLcp, FrozenFrictionBoxesSettleOnTheCoupledSolution) {
         ASSERT_TRUE(isSolution(after, run.x, kTol)) << "problem " << k;
         ASSERT_LE(run.result.residual, kTol) << "problem " << k;
         const BruteForceResult bf = bruteForce(after);
+        // From no guess at all (every state Unknown, no impulses) the first pass cannot hold, so
+        // the frozen-box phase always runs.
+        ExactRun cold;
+        cold.x.assign(after.n, 0);
+        cold.states.assign(after.n, LcpRowState::Unknown);
+        cold.result = boxed.solve(after.view(), cold.x, cold.states);
+        ASSERT_EQ(cold.result.status, LcpStatus::Solved) << "problem " << k;
+        ASSERT_TRUE(isSolution(after, cold.x, kTol)) << "problem " << k;
         if (bf.solutions.size() == 1) {
             ++unique;
             ASSERT_TRUE(near(run.x, bf.solutions[0], kTol)) << "problem " << k;
+            ASSERT_TRUE(near(cold.x, bf.solutions[0], kTol)) << "problem " << k;
         }
     }
     EXPECT_GT(unique, 900);
