@@ -4,6 +4,7 @@
 #include "af/collision/narrowphase.h"
 
 #include "ccd_query.h"
+#include "collide_placed.h"
 #include "contact_ids.h"
 #include "face_clipping.h"
 #include "manifold_reduction.h"
@@ -101,8 +102,52 @@ void singlePoint(const PlacedShape& a, const PlacedShape& b, const Vec3& normal,
     out.push_back({base - base.dot(normal) * normal + along, depth, singlePointId(ia, ib)});
 }
 
+// Whether `point` lies over face f of `shape`: inside the prism its side planes bound.
+bool overFace(const PlacedShape& shape, int f, const Vec3& point) {
+    const Vec3 normal = shape.normal(f);
+    const std::vector<int>& loop = shape.polytope->faces[f].loop;
+    Vec3 r1 = shape.vertex(loop.back());
+    for (const int v : loop) {
+        const Vec3 r0 = r1;
+        r1 = shape.vertex(v);
+        // On a counter-clockwise loop edge × normal points out of the face.
+        if ((r1 - r0).cross(normal).dot(point - r0) > 0) {
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+bool collision_detail::separationIsDistance(const PlacedShape& a, const PlacedShape& b, const SeparatingAxis& axis) {
+    switch (axis.kind) {
+    case AxisKind::faceA:
+        return overFace(a, axis.featureA, b.vertex(supportIndex(b, axis.normal)));
+    case AxisKind::faceB:
+        return overFace(b, axis.featureB, a.vertex(supportIndex(a, -axis.normal)));
+    case AxisKind::edges: {
+        const EdgeFeature& ea = a.features->edges[axis.featureA];
+        const EdgeFeature& eb = b.features->edges[axis.featureB];
+        const Vec3 p0 = a.vertex(ea.v0), q0 = b.vertex(eb.v0);
+        const Vec3 d1 = a.vertex(ea.v1) - p0, d2 = b.vertex(eb.v1) - q0, r = p0 - q0;
+        const Real aa = d1.dot(d1), e = d2.dot(d2), bb = d1.dot(d2), c = d1.dot(r), f = d2.dot(r);
+        const Real denom = aa * e - bb * bb;
+        if (!(denom > 0)) {
+            return false;
+        }
+        const Real s = (bb * f - c * e) / denom, t = (aa * f - bb * c) / denom;
+        return s >= 0 && s <= 1 && t >= 0 && t <= 1;
+    }
+    case AxisKind::none:
+    case AxisKind::free:
+        break;
+    }
+    return false;
+}
+
 // The manifold of two prepared shapes; the working frame is A's body frame.
-Manifold collidePlaced(const PlacedShape& a, const PlacedShape& b, const RigidPose& poseA, const RigidPose& poseB,
+Manifold collision_detail::collidePlaced(const PlacedShape& a, const PlacedShape& b, const RigidPose& poseA, const RigidPose& poseB,
                        Real margin) {
     const std::optional<SeparatingAxis> found = findBestAxis(a, b, margin);
     if (!found) {
@@ -111,8 +156,10 @@ Manifold collidePlaced(const PlacedShape& a, const PlacedShape& b, const RigidPo
     SeparatingAxis axis = *found;
     // A positive separation is only a lower bound of the distance (the closest points may be two
     // vertices), and two flat shapes (two coplanar triangles) may have no separating axis among
-    // their features: there libccd has the last word.
-    if (axis.kind == AxisKind::none || axis.separation > 0 || (a.flat() && b.flat())) {
+    // their features: there libccd has the last word, unless the axis's own features show that
+    // its separation is the distance.
+    if (axis.kind == AxisKind::none || (a.flat() && b.flat()) ||
+        (axis.separation > 0 && !separationIsDistance(a, b, axis))) {
         const CcdResult ccd = ccdPenetration(a, b, margin + kInflationSlack);
         if (!ccd.intersecting) {
             return {};
@@ -171,6 +218,8 @@ Manifold collidePlaced(const PlacedShape& a, const PlacedShape& b, const RigidPo
     }
     return m;
 }
+
+namespace {
 
 // A and B placed in A's body frame.
 std::pair<PlacedShape, PlacedShape> place(const Polytope& a, const ShapeFeatures& fa, const RigidPose& poseA,

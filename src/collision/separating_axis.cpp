@@ -25,6 +25,13 @@ void keepBetter(SeparatingAxis& best, const SeparatingAxis& candidate) {
 }  // namespace
 
 std::optional<SeparatingAxis> findBestAxis(const PlacedShape& a, const PlacedShape& b, Real margin) {
+    if (a.features->box.valid && b.features->box.valid) {
+        return findBestBoxAxis(a, b, margin);
+    }
+    return findBestPolytopeAxis(a, b, margin);
+}
+
+std::optional<SeparatingAxis> findBestPolytopeAxis(const PlacedShape& a, const PlacedShape& b, Real margin) {
     SeparatingAxis faceA, faceB, edges;
 
     for (int f = 0; f < a.faceCount(); ++f) {
@@ -164,7 +171,13 @@ std::optional<SeparatingAxis> findBestAxis(const PlacedShape& a, const PlacedSha
     if (beyondMargin) {
         return std::nullopt;
     }
+    return chooseAxis(a, b, faceA, faceB, edges);
+}
 
+SeparatingAxis chooseAxis(const PlacedShape& a, const PlacedShape& b, const SeparatingAxis& faceA,
+                          const SeparatingAxis& faceB, const SeparatingAxis& edges) {
+    const ShapeFeatures& fa = *a.features;
+    const ShapeFeatures& fb = *b.features;
     // Parallel faces tie (a box resting on a box): the larger face is the reference, as it would
     // be after the slightest tilt of either, so that ids do not change when one tilts.
     SeparatingAxis best = faceA;

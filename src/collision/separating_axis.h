@@ -30,7 +30,23 @@ struct SeparatingAxis {
 // The best axis. Within kLengthTolerance, a face beats an edge pair and the larger of two
 // faces wins (A's on equal areas), so that near-ties resolve the same way every step. std::nullopt as soon as some axis
 // separates the shapes by more than `margin`. kind == none when neither shape has a face with
-// area nor a pair of non-parallel edges.
+// area nor a pair of non-parallel edges. Two boxes take findBestBoxAxis, everything else
+// findBestPolytopeAxis.
 std::optional<SeparatingAxis> findBestAxis(const PlacedShape& a, const PlacedShape& b, Real margin);
+
+// The search over any two polytopes, projecting vertices.
+std::optional<SeparatingAxis> findBestPolytopeAxis(const PlacedShape& a, const PlacedShape& b, Real margin);
+
+// The same answer for two boxes (features->box valid) from the closed forms of the box–box test:
+// a face's separation from the other box's centre and radius, an edge pair's from the 3 × 3
+// rotation between the boxes, its features as the support edges along the axis. Equal to
+// findBestPolytopeAxis up to rounding wherever the best axis is unique.
+std::optional<SeparatingAxis> findBestBoxAxis(const PlacedShape& a, const PlacedShape& b, Real margin);
+
+// The tie rules above applied to the best face of A, the best face of B and the best edge pair
+// (each kind none when absent); an edge pair's axis and separation are recomputed from its own
+// two edges.
+SeparatingAxis chooseAxis(const PlacedShape& a, const PlacedShape& b, const SeparatingAxis& faceA,
+                          const SeparatingAxis& faceB, const SeparatingAxis& edges);
 
 }  // namespace af::collision_detail

@@ -82,6 +82,93 @@ void groupArcs(ShapeFeatures& s) {
     }
 }
 
+// A box's faces are square to its axes within this cosine, and its vertices on its corners
+// within this fraction of its size: closer than rounding makes the closed forms and the vertex
+// projections agree to the last few bits.
+constexpr Real kBoxCosine = 1e-12;
+constexpr Real kBoxCorner = 1e-12;
+
+// Fills s.box when the polytope is a rectangular box (eight corners, six faces in three
+// square-to-each-other pairs, three groups of four parallel edges), else leaves it invalid.
+void describeBox(const Polytope& p, ShapeFeatures& s) {
+    BoxFeatures& box = s.box;
+    box.valid = false;
+    if (p.vertices.size() != 8 || p.faces.size() != 6 || p.edges.size() != 12 || s.flat || s.groups.size() != 3 ||
+        s.arcs.size() != 12) {
+        return;
+    }
+    int axes = 0;
+    std::array<int, 3> plus{-1, -1, -1}, minus{-1, -1, -1};
+    for (int f = 0; f < 6; ++f) {
+        const Vec3& n = p.faces[f].normal;
+        int i = 0;
+        while (i < axes && std::abs(std::abs(n.dot(box.axes.col(i))) - 1) > kBoxCosine) {
+            ++i;
+        }
+        if (i == axes) {
+            if (axes == 3) {
+                return;
+            }
+            box.axes.col(axes++) = n;
+        }
+        const bool along = n.dot(box.axes.col(i)) > 0;
+        int& slot = along ? plus[i] : minus[i];
+        if (slot >= 0) {
+            return;
+        }
+        slot = f;
+        box.faceAxis[f] = i;
+        box.faceSign[f] = along ? 1 : -1;
+    }
+    if (axes != 3 || std::abs(box.axes.col(0).dot(box.axes.col(1))) > kBoxCosine ||
+        std::abs(box.axes.col(0).dot(box.axes.col(2))) > kBoxCosine ||
+        std::abs(box.axes.col(1).dot(box.axes.col(2))) > kBoxCosine) {
+        return;
+    }
+    if (box.axes.col(0).cross(box.axes.col(1)).dot(box.axes.col(2)) < 0) {
+        box.axes.col(2) = -box.axes.col(2);
+        std::swap(plus[2], minus[2]);
+        for (int f = 0; f < 6; ++f) {
+            box.faceSign[f] = box.faceAxis[f] == 2 ? -box.faceSign[f] : box.faceSign[f];
+        }
+    }
+    box.centre = Vec3::Zero();
+    Real size = 0;
+    for (int i = 0; i < 3; ++i) {
+        const Real hi = p.faces[plus[i]].offset, lo = -p.faces[minus[i]].offset;
+        box.half[i] = (hi - lo) / 2;
+        box.centre += (hi + lo) / 2 * box.axes.col(i);
+        size = std::max(size, std::abs(hi) + std::abs(lo));
+    }
+    const Real tolerance = kBoxCorner * std::max(size, Real(1));
+    for (const Vec3& v : p.vertices) {
+        const Vec3 local = box.axes.transpose() * (v - box.centre);
+        if (((local.cwiseAbs() - box.half).cwiseAbs().array() > tolerance).any()) {
+            return;
+        }
+    }
+    for (auto& row : box.edge) {
+        row.fill(-1);
+    }
+    for (int k = 0; k < 12; ++k) {
+        const EdgeFeature& e = s.edges[k];
+        const Vec3 along = box.axes.transpose() * e.direction.normalized();
+        int i = 0;
+        along.cwiseAbs().maxCoeff(&i);
+        const Vec3 mid = box.axes.transpose() * ((p.vertices[e.v0] + p.vertices[e.v1]) / 2 - box.centre);
+        int& slot = box.edge[i][(mid[(i + 1) % 3] > 0 ? 1 : 0) | (mid[(i + 2) % 3] > 0 ? 2 : 0)];
+        if (slot >= 0) {
+            return;
+        }
+        slot = k;
+    }
+    for (int g = 0; g < 3; ++g) {
+        (box.axes.transpose() * s.groups[g].direction).cwiseAbs().maxCoeff(&box.groupAxis[g]);
+    }
+    box.valid = box.groupAxis[0] != box.groupAxis[1] && box.groupAxis[0] != box.groupAxis[2] &&
+                box.groupAxis[1] != box.groupAxis[2];
+}
+
 }  // namespace
 
 void prepare(const Polytope& polytope, ShapeFeatures& out) {
@@ -131,6 +218,7 @@ void prepare(const Polytope& polytope, ShapeFeatures& out) {
         }
     }
     groupArcs(out);
+    describeBox(polytope, out);
 }
 
 Real faceArea(const Polytope& polytope, int f) {

@@ -39,6 +39,23 @@ struct EdgeGroup {
     int first = 0, count = 0;        // into ShapeFeatures::arcs
 };
 
+// A polytope that is a rectangular box, described by its centre, axes and half extents so that
+// box–box queries can use the closed forms of the separating-axis test instead of projecting
+// vertices. Faces and edges keep the polytope's numbering, so that a query's answer names the same
+// features whichever way it was found.
+struct BoxFeatures {
+    bool valid = false;
+    Vec3 centre = Vec3::Zero();
+    Mat3 axes = Mat3::Identity();    // columns: unit, right-handed, each the normal of a face
+    Vec3 half = Vec3::Zero();        // half extent along each axis
+    std::array<int, 6> faceAxis{};   // per face: the axis it is square to
+    std::array<Real, 6> faceSign{};  // per face: +1 when its normal is the axis, −1 when opposite
+    std::array<int, 3> groupAxis{};  // per edge group (ShapeFeatures::groups): the axis it runs along
+    // The edges along axis i: edge[i][k], bit 0 of k set on the + side of axis (i + 1) % 3, bit 1 on
+    // the + side of axis (i + 2) % 3.
+    std::array<std::array<int, 4>, 3> edge{};
+};
+
 struct ShapeFeatures {
     std::vector<EdgeFeature> edges;  // polytope.edges order
     std::vector<EdgeArc> arcs;       // group by group
@@ -46,6 +63,7 @@ struct ShapeFeatures {
     std::vector<int> arclessEdges;   // edges of length without arcs (segments: no face has area)
     Vec3 centre = Vec3::Zero();      // vertex mean, an interior point for libccd's MPR
     bool flat = false;               // some face has no area: a flat shape or a segment
+    BoxFeatures box;
 };
 
 // Fills `out` from `polytope` (no allocation once `out` has held a shape at least as large).
