@@ -80,10 +80,11 @@ Contact currentContact(const ContactPoint& p, std::span<const RigidBody> bodies)
 }
 
 void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
-                      const ContactSettings& settings, ConstraintRows& rows, std::vector<std::uint64_t>& keys) {
+                      std::span<const Mat3> inverseInertiaWorld, const ContactSettings& settings, ConstraintRows& rows,
+                      std::vector<std::uint64_t>& keys) {
     for (const ContactPoint& p : points) {
         const std::size_t first = rows.size();
-        writeContactRows(currentContact(p, bodies), bodies, settings, rows);
+        writeContactRows(currentContact(p, bodies), bodies, inverseInertiaWorld, settings, rows);
         for (std::size_t r = first; r < rows.size(); ++r) keys.push_back(p.key + (r - first));
     }
 }

@@ -41,8 +41,10 @@ struct ContactPoint {
 // The contact at the bodies' current poses.
 Contact currentContact(const ContactPoint& point, std::span<const RigidBody> bodies);
 // Appends every point's rows, and one key per row (the point's key and the row's place).
+// inverseInertiaWorld: each body's RigidBody::inverseInertiaWorld, indexed as bodies.
 void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
-                      const ContactSettings& settings, ConstraintRows& rows, std::vector<std::uint64_t>& keys);
+                      std::span<const Mat3> inverseInertiaWorld, const ContactSettings& settings, ConstraintRows& rows,
+                      std::vector<std::uint64_t>& keys);
 // The deepest penetration of the points at the bodies' current poses (0 when none touches).
 Real maxPenetration(std::span<const ContactPoint> points, std::span<const RigidBody> bodies);
 

@@ -62,15 +62,16 @@ void Island::writeRows(IslandContext& context) {
     rows_.clear();
     ranges_.clear();
     rowKeys_.clear();
+    const std::span<const Mat3> inertia = system_.inverseInertiasWorld(bodies_);
     for (std::size_t k = 0; k < joints_.size(); ++k) {
-        const JointRowRange range = writeJointRows(joints_[k], bodies_, context.settings.rows, rows_);
+        const JointRowRange range = writeJointRows(joints_[k], bodies_, inertia, context.settings.rows, rows_);
         ranges_.push_back(range);
         const std::uint64_t joint = kJointKeyTag | (static_cast<std::uint64_t>(jointIds_[k]) << 8);
         for (int r = 0; r < range.equalityRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(r));
         for (int r = 0; r < range.limitRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(64 + r));
         for (int r = 0; r < range.frictionRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(128 + r));
     }
-    writeContactRows(points_, bodies_, context.settings.contact, rows_, rowKeys_);
+    writeContactRows(points_, bodies_, inertia, context.settings.contact, rows_, rowKeys_);
     if (!context.extraRows) return;
     for (std::size_t i = 0; i < bodyIds_.size(); ++i)
         context.worldBodies[static_cast<std::size_t>(bodyIds_[i])] = bodies_[i];

@@ -23,7 +23,10 @@
 
 namespace af::joint_detail {
 
-Side sideOf(int index, std::span<const RigidBody> bodies) {
+namespace {
+
+// Everything but the inertia.
+Side kinematicSide(int index, std::span<const RigidBody> bodies) {
     Side s;
     s.index = index;
     if (index == kWorldBody) return s;
@@ -34,7 +37,21 @@ Side sideOf(int index, std::span<const RigidBody> bodies) {
     s.linearVelocity = body.linearVelocity;
     s.angularVelocity = body.angularVelocity;
     s.inverseMass = body.inverseMass;
-    s.inverseInertia = s.rotation * body.inverseInertia * s.rotation.transpose();
+    return s;
+}
+
+}  // namespace
+
+Side sideOf(int index, std::span<const RigidBody> bodies) {
+    Side s = kinematicSide(index, bodies);
+    if (index != kWorldBody)
+        s.inverseInertia = s.rotation * bodies[static_cast<std::size_t>(index)].inverseInertia * s.rotation.transpose();
+    return s;
+}
+
+Side sideOf(int index, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld) {
+    Side s = kinematicSide(index, bodies);
+    if (index != kWorldBody) s.inverseInertia = inverseInertiaWorld[static_cast<std::size_t>(index)];
     return s;
 }
 
@@ -42,8 +59,12 @@ Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies) {
     return {sideOf(joint.bodyA, bodies), sideOf(joint.bodyB, bodies)};
 }
 
+Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld) {
+    return {sideOf(joint.bodyA, bodies, inverseInertiaWorld), sideOf(joint.bodyB, bodies, inverseInertiaWorld)};
+}
+
 void addRow(const Pair& pair, const Jacobian& j, Real error, Real lo, Real hi, Real relativeCfm, ConstraintRows& out) {
-    ConstraintRow row;
+    ConstraintRow& row = out.append();
     row.bodyA = pair.a.index;
     row.bodyB = pair.b.index;
     row.linearA = j.linearA;
@@ -60,7 +81,6 @@ void addRow(const Pair& pair, const Jacobian& j, Real error, Real lo, Real hi, R
                           pair.b.inverseMass * row.linearB.squaredNorm() +
                           row.angularB.dot(pair.b.inverseInertia * row.angularB);
     row.cfm = relativeCfm * diagonal;
-    out.add(row);
 }
 
 Vec3 perpendicular(const Vec3& v) {

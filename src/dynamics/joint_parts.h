@@ -29,12 +29,15 @@ struct Side {
 };
 
 Side sideOf(int index, std::span<const RigidBody> bodies);
+// The same with the body's world inverse inertia given (see writeJointRows).
+Side sideOf(int index, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld);
 
 // The two bodies of a joint.
 struct Pair {
     Side a, b;
 };
 Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies);
+Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld);
 
 // The Jacobian of one row: Cdot = linearA·vA + angularA·ωA + linearB·vB + angularB·ωB.
 struct Jacobian {

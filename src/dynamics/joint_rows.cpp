@@ -8,9 +8,9 @@ namespace af {
 
 using namespace joint_detail;
 
-JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies, const JointRowSettings& settings,
-                             ConstraintRows& out) {
-    const Pair pair = pairOf(joint, bodies);
+namespace {
+
+JointRowRange writeRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
     const int first = static_cast<int>(out.size());
     JointRowRange range;
     switch (joint.type) {
@@ -23,6 +23,19 @@ JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodi
     }
     range.first = first;
     return range;
+}
+
+}  // namespace
+
+JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies, const JointRowSettings& settings,
+                             ConstraintRows& out) {
+    return writeRows(joint, pairOf(joint, bodies), settings, out);
+}
+
+JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies,
+                             std::span<const Mat3> inverseInertiaWorld, const JointRowSettings& settings,
+                             ConstraintRows& out) {
+    return writeRows(joint, pairOf(joint, bodies, inverseInertiaWorld), settings, out);
 }
 
 Real jointError(const Joint& joint, std::span<const RigidBody> bodies) {

@@ -28,19 +28,25 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
     x_.resize(n);
     states_.resize(n);
 
+    const std::span<const Mat3> inertia = inverseInertiasWorld(bodies);
     for (std::size_t i = 0; i < n; ++i) {
         const ConstraintRow& r = rows[i];
         RowResponse& m = response_[i];
-        m = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
         if (r.bodyA != kWorldBody) {
-            const RigidBody& a = bodies[static_cast<std::size_t>(r.bodyA)];
-            m.linearA = a.inverseMass * r.linearA;
-            m.angularA = a.inverseInertiaWorld() * r.angularA;
+            const std::size_t a = static_cast<std::size_t>(r.bodyA);
+            m.linearA = bodies[a].inverseMass * r.linearA;
+            m.angularA.noalias() = inertia[a] * r.angularA;
+        } else {
+            m.linearA.setZero();
+            m.angularA.setZero();
         }
         if (r.bodyB != kWorldBody) {
-            const RigidBody& b = bodies[static_cast<std::size_t>(r.bodyB)];
-            m.linearB = b.inverseMass * r.linearB;
-            m.angularB = b.inverseInertiaWorld() * r.angularB;
+            const std::size_t b = static_cast<std::size_t>(r.bodyB);
+            m.linearB = bodies[b].inverseMass * r.linearB;
+            m.angularB.noalias() = inertia[b] * r.angularB;
+        } else {
+            m.linearB.setZero();
+            m.angularB.setZero();
         }
         lo_[i] = r.lo;
         hi_[i] = r.hi;
@@ -48,6 +54,12 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
         mu_[i] = r.frictionCoefficient;
         cfm_[i] = r.cfm;
     }
+}
+
+std::span<const Mat3> RowSystem::inverseInertiasWorld(std::span<const RigidBody> bodies) {
+    inverseInertia_.resize(bodies.size());
+    for (std::size_t k = 0; k < bodies.size(); ++k) inverseInertia_[k] = bodies[k].inverseInertiaWorld();
+    return inverseInertia_;
 }
 
 void RowSystem::buildMatrix(const ConstraintRows& rows) {

@@ -60,6 +60,11 @@ public:
 
     const RowResponse& response(std::size_t row) const { return response_[row]; }
 
+    // Each body's RigidBody::inverseInertiaWorld at its current pose, computed once per body, for
+    // writing or reading many rows at one pose. Valid until the next call of this or of build
+    // or buildResponses (which compute it for their own bodies).
+    std::span<const Mat3> inverseInertiasWorld(std::span<const RigidBody> bodies);
+
 private:
     int n_ = 0;
     std::vector<RowResponse> response_;
@@ -67,6 +72,7 @@ private:
     std::vector<int> findex_;
     std::vector<LcpRowState> states_;
     std::vector<Vec3> linearShift_, angularShift_;
+    std::vector<Mat3> inverseInertia_;
 };
 
 }  // namespace af

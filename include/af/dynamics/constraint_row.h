@@ -48,6 +48,9 @@ public:
         rows_.push_back(row);
         return static_cast<int>(rows_.size()) - 1;
     }
+    // Appends a default row to be written in place (no temporary to copy); the reference holds
+    // until the next append or add. Its index is size() − 1.
+    ConstraintRow& append() { return rows_.emplace_back(); }
     std::size_t size() const { return rows_.size(); }
     ConstraintRow& operator[](std::size_t i) { return rows_[i]; }
     const ConstraintRow& operator[](std::size_t i) const { return rows_[i]; }

@@ -45,5 +45,9 @@ struct ContactSettings {
 // Appends the rows of one contact; returns the index of its normal row.
 int writeContactRows(const Contact& contact, std::span<const RigidBody> bodies, const ContactSettings& settings,
                      ConstraintRows& out);
+// The same, with each body's world inverse inertia given (RigidBody::inverseInertiaWorld of
+// bodies[i], indexed alike): a caller writing many rows at one pose computes it once per body.
+int writeContactRows(const Contact& contact, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld,
+                     const ContactSettings& settings, ConstraintRows& out);
 
 }  // namespace af

@@ -144,6 +144,11 @@ struct JointRowRange {
 // Appends the joint's rows at the bodies' current poses and velocities.
 JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies,
                              const JointRowSettings& settings, ConstraintRows& out);
+// The same, with each body's world inverse inertia given (RigidBody::inverseInertiaWorld of
+// bodies[i], indexed alike): a caller writing many rows at one pose computes it once per body.
+JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies,
+                             std::span<const Mat3> inverseInertiaWorld, const JointRowSettings& settings,
+                             ConstraintRows& out);
 
 // Doom's spring force (§4.3), quadratic in the displacement, added to the bodies' external
 // force and torque. Does nothing for other joint types.
