@@ -1,0 +1,307 @@
+#include "sparse_factor.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace af {
+
+namespace {
+
+// A pivot must exceed this fraction of its row's own J M⁻¹ Jᵀ + cfm. The smallest CFM rows carry
+// is 1e-9 of it, so only rows that depend on others and carry none fall below.
+constexpr Real kPivotTolerance = 1e-13;
+
+constexpr int kNoBody = -1;
+
+std::uint64_t pairKey(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(a + 1) << 32) | static_cast<std::uint64_t>(b + 1);
+}
+int firstBody(std::uint64_t key) { return static_cast<int>(key >> 32) - 1; }
+int secondBody(std::uint64_t key) { return static_cast<int>(key & 0xffffffffu) - 1; }
+
+bool shareBody(std::uint64_t g, std::uint64_t h) {
+    const int a = firstBody(g), b = secondBody(g), c = firstBody(h), d = secondBody(h);
+    return (a != kNoBody && (a == c || a == d)) || (b != kNoBody && (b == c || b == d));
+}
+
+// The Jacobian and the response of `row` on the side that is body `b`.
+struct Side {
+    const Vec3& linear;
+    const Vec3& angular;
+};
+Side jacobianOn(const ConstraintRow& row, int b) {
+    return row.bodyA == b ? Side{row.linearA, row.angularA} : Side{row.linearB, row.angularB};
+}
+Side responseOn(const ConstraintRow& row, const RowResponse& m, int b) {
+    return row.bodyA == b ? Side{m.linearA, m.angularA} : Side{m.linearB, m.angularB};
+}
+
+}  // namespace
+
+bool SparseRowFactor::analyse(std::span<const ConstraintRow> rows, std::span<const RigidBody> bodies) {
+    const int bodyCount = static_cast<int>(bodies.size());
+    auto dynamic = [&](int b) { return b != kWorldBody && bodies[static_cast<std::size_t>(b)].inverseMass > 0 ? b : kNoBody; };
+    rowKey_.resize(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const ConstraintRow& r = rows[i];
+        const bool inRange = r.bodyA >= kWorldBody && r.bodyA < bodyCount && r.bodyB >= kWorldBody && r.bodyB < bodyCount;
+        if (!inRange || (r.bodyA == r.bodyB && r.bodyA != kWorldBody)) {
+            groupKeys_.clear();
+            return false;
+        }
+        rowKey_[i] = pairKey(dynamic(r.bodyA), dynamic(r.bodyB));
+    }
+    std::vector<std::uint64_t>& sorted = scratchKeys_;
+    sorted.assign(rowKey_.begin(), rowKey_.end());
+    std::sort(sorted.begin(), sorted.end());
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    if (sorted != sortedKeys_ || groupKeys_.empty() != sorted.empty()) {
+        sortedKeys_ = sorted;
+        order();
+    }
+
+    const std::size_t groups = groupKeys_.size();
+    groupOfRow_.resize(rows.size());
+    rowStart_.assign(groups + 1, 0);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const auto at = std::lower_bound(sortedKeys_.begin(), sortedKeys_.end(), rowKey_[i]) - sortedKeys_.begin();
+        groupOfRow_[i] = positionOf_[static_cast<std::size_t>(at)];
+        ++rowStart_[static_cast<std::size_t>(groupOfRow_[i]) + 1];
+    }
+    for (std::size_t g = 0; g < groups; ++g) rowStart_[g + 1] += rowStart_[g];
+    groupRows_.resize(rows.size());
+    fill_.assign(rowStart_.begin(), rowStart_.end() - 1);
+    for (std::size_t i = 0; i < rows.size(); ++i) groupRows_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(groupOfRow_[i])]++)] = static_cast<int>(i);
+
+    bodyStart_.assign(bodies.size() + 1, 0);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        for (int b : {firstBody(rowKey_[i]), secondBody(rowKey_[i])})
+            if (b != kNoBody) ++bodyStart_[static_cast<std::size_t>(b) + 1];
+    for (std::size_t b = 0; b < bodies.size(); ++b) bodyStart_[b + 1] += bodyStart_[b];
+    bodyRows_.resize(static_cast<std::size_t>(bodyStart_.back()));
+    fill_.assign(bodyStart_.begin(), bodyStart_.end() - 1);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        for (int b : {firstBody(rowKey_[i]), secondBody(rowKey_[i])})
+            if (b != kNoBody) bodyRows_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(b)]++)] = static_cast<int>(i);
+    return true;
+}
+
+// Minimum fill: always eliminate the group whose neighbours are closest to a clique (none missing
+// for a leaf of a tree, so trees get no fill), then the one with fewest neighbours, then the
+// first. The neighbours left when a group is eliminated are its front, made a clique (the fill).
+void SparseRowFactor::order() {
+    const std::size_t groups = sortedKeys_.size();
+    const std::size_t words = (groups + 63) / 64;
+    adjacency_.assign(groups * words, 0);
+    auto bit = [&](std::size_t g, std::size_t h) { return (adjacency_[g * words + h / 64] >> (h % 64)) & 1u; };
+    auto set = [&](std::size_t g, std::size_t h) { adjacency_[g * words + h / 64] |= std::uint64_t(1) << (h % 64); };
+    for (std::size_t g = 0; g < groups; ++g)
+        for (std::size_t h = g + 1; h < groups; ++h)
+            if (shareBody(sortedKeys_[g], sortedKeys_[h])) {
+                set(g, h);
+                set(h, g);
+            }
+
+    positionOf_.assign(groups, -1);
+    groupKeys_.resize(groups);
+    frontStart_.assign(groups + 1, 0);
+    front_.clear();
+    std::vector<int>& neighbours = scratchInts_;
+    for (std::size_t step = 0; step < groups; ++step) {
+        std::size_t best = groups, bestFill = 0, bestDegree = 0;
+        for (std::size_t g = 0; g < groups; ++g) {
+            if (positionOf_[g] >= 0) continue;
+            neighbours.clear();
+            for (std::size_t h = 0; h < groups; ++h)
+                if (positionOf_[h] < 0 && bit(g, h)) neighbours.push_back(static_cast<int>(h));
+            std::size_t missing = 0;
+            for (std::size_t u = 0; u < neighbours.size() && (best == groups || missing <= bestFill); ++u)
+                for (std::size_t v = u + 1; v < neighbours.size(); ++v)
+                    missing += bit(static_cast<std::size_t>(neighbours[u]), static_cast<std::size_t>(neighbours[v])) ? 0 : 1;
+            const bool better = best == groups || missing < bestFill || (missing == bestFill && neighbours.size() < bestDegree);
+            if (better) {
+                best = g;
+                bestFill = missing;
+                bestDegree = neighbours.size();
+            }
+        }
+        positionOf_[best] = static_cast<int>(step);
+        groupKeys_[step] = sortedKeys_[best];
+        neighbours.clear();
+        for (std::size_t h = 0; h < groups; ++h)
+            if (positionOf_[h] < 0 && bit(best, h)) neighbours.push_back(static_cast<int>(h));
+        for (int u : neighbours) {
+            front_.push_back(u);  // sorted-key index for now, a position below
+            for (int v : neighbours)
+                if (u != v) set(static_cast<std::size_t>(u), static_cast<std::size_t>(v));
+        }
+        frontStart_[step + 1] = static_cast<int>(front_.size());
+    }
+    for (int& f : front_) f = positionOf_[static_cast<std::size_t>(f)];
+    for (std::size_t g = 0; g < groups; ++g)
+        std::sort(front_.begin() + frontStart_[g], front_.begin() + frontStart_[g + 1]);
+}
+
+int SparseRowFactor::frontSlot(int column, int group) const {
+    const auto first = front_.begin() + frontStart_[static_cast<std::size_t>(column)];
+    const auto last = front_.begin() + frontStart_[static_cast<std::size_t>(column) + 1];
+    return static_cast<int>(std::lower_bound(first, last, group) - front_.begin());
+}
+
+bool SparseRowFactor::factor(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                             std::span<const Real> cfm, std::span<const std::uint8_t> free) {
+    const std::size_t groups = groupKeys_.size();
+    size_.assign(groups, 0);
+    local_.assign(rows.size(), -1);
+    varStart_.assign(groups + 1, 0);
+    for (std::size_t g = 0; g < groups; ++g) {
+        for (int k = rowStart_[g]; k < rowStart_[g + 1]; ++k) {
+            const int r = groupRows_[static_cast<std::size_t>(k)];
+            if (free[static_cast<std::size_t>(r)]) local_[static_cast<std::size_t>(r)] = size_[g]++;
+        }
+        varStart_[g + 1] = varStart_[g] + size_[g];
+    }
+    panelStart_.resize(groups + 1);
+    panelHeight_.resize(groups);
+    blockOffset_.resize(front_.size());
+    int total = 0;
+    for (std::size_t g = 0; g < groups; ++g) {
+        int height = size_[g];
+        for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
+            blockOffset_[static_cast<std::size_t>(s)] = height;
+            height += size_[static_cast<std::size_t>(front_[static_cast<std::size_t>(s)])];
+        }
+        panelStart_[g] = total;
+        panelHeight_[g] = height;
+        total += height * size_[g];
+    }
+    panelStart_[groups] = total;
+    values_.assign(static_cast<std::size_t>(total), 0);
+    assemble(rows, responses, cfm);
+    for (std::size_t k = 0; k < groups; ++k)
+        if (!eliminate(static_cast<int>(k))) return false;
+    return true;
+}
+
+// A_rs = Σ over the bodies rows r and s share of J_r M⁻¹ J_sᵀ, into the panel of the row eliminated
+// first (lower triangle of the diagonal blocks), and the CFM on the diagonal.
+void SparseRowFactor::assemble(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                               std::span<const Real> cfm) {
+    const std::size_t bodies = bodyStart_.size() - 1;
+    for (std::size_t b = 0; b < bodies; ++b) {
+        const int body = static_cast<int>(b);
+        for (int p = bodyStart_[b]; p < bodyStart_[b + 1]; ++p) {
+            const std::size_t r = static_cast<std::size_t>(bodyRows_[static_cast<std::size_t>(p)]);
+            if (local_[r] < 0) continue;
+            const int gr = groupOfRow_[r];
+            const Side jr = jacobianOn(rows[r], body);
+            Real* column = &values_[static_cast<std::size_t>(panelStart_[static_cast<std::size_t>(gr)] +
+                                                             local_[r] * panelHeight_[static_cast<std::size_t>(gr)])];
+            for (int q = bodyStart_[b]; q < bodyStart_[b + 1]; ++q) {
+                const std::size_t s = static_cast<std::size_t>(bodyRows_[static_cast<std::size_t>(q)]);
+                const int gs = groupOfRow_[s];
+                if (local_[s] < 0 || gs < gr || (gs == gr && local_[s] < local_[r])) continue;
+                const Side ms = responseOn(rows[s], responses[s], body);
+                const int at = gs == gr ? local_[s] : blockOffset_[static_cast<std::size_t>(frontSlot(gr, gs))] + local_[s];
+                column[at] += jr.linear.dot(ms.linear) + jr.angular.dot(ms.angular);
+            }
+        }
+    }
+    diagonal_.resize(static_cast<std::size_t>(varStart_.back()));
+    for (std::size_t g = 0; g < groupKeys_.size(); ++g)
+        for (int k = rowStart_[g]; k < rowStart_[g + 1]; ++k) {
+            const std::size_t r = static_cast<std::size_t>(groupRows_[static_cast<std::size_t>(k)]);
+            if (local_[r] < 0) continue;
+            Real& d = values_[static_cast<std::size_t>(panelStart_[g] + local_[r] * (panelHeight_[g] + 1))];
+            d += cfm.empty() ? 0 : cfm[r];
+            diagonal_[static_cast<std::size_t>(varStart_[g] + local_[r])] = d;
+        }
+}
+
+// Column by column LDLᵀ of group k's panel (its diagonal block and, below it, L of its front
+// blocks), then the Schur complement L_a D L_bᵀ taken off the front groups' panels.
+bool SparseRowFactor::eliminate(int k) {
+    const std::size_t g = static_cast<std::size_t>(k);
+    const int n = size_[g];
+    if (n == 0) return true;
+    const int height = panelHeight_[g];
+    Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
+    auto at = [&](int i, int j) -> Real& { return panel[j * height + i]; };
+    const Real* own = &diagonal_[static_cast<std::size_t>(varStart_[g])];
+    for (int j = 0; j < n; ++j) {
+        for (int t = 0; t < j; ++t) {
+            const Real f = at(j, t) * at(t, t);
+            if (f == 0) continue;
+            for (int i = j; i < height; ++i) at(i, j) -= at(i, t) * f;
+        }
+        const Real d = at(j, j);
+        if (!(d > kPivotTolerance * own[j])) return false;
+        for (int i = j + 1; i < height; ++i) at(i, j) /= d;
+    }
+    for (int sa = frontStart_[g]; sa < frontStart_[g + 1]; ++sa) {
+        const std::size_t ga = static_cast<std::size_t>(front_[static_cast<std::size_t>(sa)]);
+        const int oa = blockOffset_[static_cast<std::size_t>(sa)], na = size_[ga];
+        if (na == 0) continue;
+        Real* target = &values_[static_cast<std::size_t>(panelStart_[ga])];
+        const int targetHeight = panelHeight_[ga];
+        for (int sb = sa; sb < frontStart_[g + 1]; ++sb) {
+            const std::size_t gb = static_cast<std::size_t>(front_[static_cast<std::size_t>(sb)]);
+            const int ob = blockOffset_[static_cast<std::size_t>(sb)], nb = size_[gb];
+            if (nb == 0) continue;
+            const int into = sa == sb ? 0 : blockOffset_[static_cast<std::size_t>(frontSlot(static_cast<int>(ga), static_cast<int>(gb)))];
+            for (int c = 0; c < na; ++c)
+                for (int r = sa == sb ? c : 0; r < nb; ++r) {
+                    Real sum = 0;
+                    for (int t = 0; t < n; ++t) sum += at(ob + r, t) * at(t, t) * at(oa + c, t);
+                    target[c * targetHeight + into + r] -= sum;
+                }
+        }
+    }
+    return true;
+}
+
+void SparseRowFactor::solve(std::span<Real> x) const {
+    const std::size_t groups = groupKeys_.size();
+    work_.resize(static_cast<std::size_t>(varStart_[groups]));
+    for (std::size_t g = 0; g < groups; ++g)
+        for (int k = rowStart_[g]; k < rowStart_[g + 1]; ++k) {
+            const std::size_t r = static_cast<std::size_t>(groupRows_[static_cast<std::size_t>(k)]);
+            if (local_[r] >= 0) work_[static_cast<std::size_t>(varStart_[g] + local_[r])] = x[r];
+        }
+    auto panelAt = [&](std::size_t g, int i, int j) { return values_[static_cast<std::size_t>(panelStart_[g] + j * panelHeight_[g] + i)]; };
+    for (std::size_t g = 0; g < groups; ++g) {
+        Real* y = &work_[static_cast<std::size_t>(varStart_[g])];
+        const int n = size_[g];
+        for (int j = 0; j < n; ++j)
+            for (int i = j + 1; i < n; ++i) y[i] -= panelAt(g, i, j) * y[j];
+        for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
+            const std::size_t f = static_cast<std::size_t>(front_[static_cast<std::size_t>(s)]);
+            Real* yf = &work_[static_cast<std::size_t>(varStart_[f])];
+            const int o = blockOffset_[static_cast<std::size_t>(s)];
+            for (int j = 0; j < n; ++j)
+                for (int r = 0; r < size_[f]; ++r) yf[r] -= panelAt(g, o + r, j) * y[j];
+        }
+        for (int j = 0; j < n; ++j) y[j] /= panelAt(g, j, j);
+    }
+    for (std::size_t g = groups; g-- > 0;) {
+        Real* y = &work_[static_cast<std::size_t>(varStart_[g])];
+        const int n = size_[g];
+        for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
+            const std::size_t f = static_cast<std::size_t>(front_[static_cast<std::size_t>(s)]);
+            const Real* yf = &work_[static_cast<std::size_t>(varStart_[f])];
+            const int o = blockOffset_[static_cast<std::size_t>(s)];
+            for (int j = 0; j < n; ++j)
+                for (int r = 0; r < size_[f]; ++r) y[j] -= panelAt(g, o + r, j) * yf[r];
+        }
+        for (int j = n; j-- > 0;)
+            for (int i = j + 1; i < n; ++i) y[j] -= panelAt(g, i, j) * y[i];
+    }
+    for (std::size_t g = 0; g < groups; ++g)
+        for (int k = rowStart_[g]; k < rowStart_[g + 1]; ++k) {
+            const std::size_t r = static_cast<std::size_t>(groupRows_[static_cast<std::size_t>(k)]);
+            if (local_[r] >= 0) x[r] = work_[static_cast<std::size_t>(varStart_[g] + local_[r])];
+        }
+}
+
+}  // namespace af

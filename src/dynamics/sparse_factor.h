@@ -1,0 +1,68 @@
+#pragma once
+// A sparse LDLᵀ factorisation of A = J M⁻¹ Jᵀ + diag(cfm) restricted to a chosen set of rows (the
+// "free" rows), the matrix that every trial of the sparse active-set solve (sparse_lcp.h) needs.
+//
+// Rows are grouped by the pair of bodies they join (the world and static bodies count as no
+// body), and two groups couple only through a body they share. A figure's joints form a tree and
+// rows to the world (ground contacts) hang off single bodies, so eliminating the groups leaf first
+// creates no fill: the factorisation costs time linear in the number of bodies, with dense work
+// only in the small blocks of rows that meet at one body. Loops (a hand resting on a thigh, two
+// figures touching twice) are handled by a minimum-fill order and its fill.
+//
+// With CFM > 0 on every row (or independent rows) A is symmetric positive definite, so LDLᵀ
+// without pivoting is stable in any elimination order. A pivot that is not clearly positive (rows
+// that depend on each other and carry no CFM) makes factor() fail rather than give garbage; the
+// pivoting solver handles those.
+//
+// The grouping and order (analyse) depend only on which bodies the rows join, and are redone only
+// when that changes; factor() depends on the free set; both keep their buffers' capacity, so a
+// step allocates nothing once the largest structure has been seen.
+
+#include "af/dynamics/constraint_row.h"
+#include "af/dynamics/rigid_body.h"
+#include "row_system.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace af {
+
+class SparseRowFactor {
+public:
+    // Groups the rows and orders the groups. False (and the factor unusable) for a row that joins
+    // a body to itself or names a body out of range.
+    bool analyse(std::span<const ConstraintRow> rows, std::span<const RigidBody> bodies);
+    // Factorises A restricted to the rows with free[i] != 0 (rows as given to analyse, with their
+    // responses M⁻¹Jᵀ and CFM). False if a pivot is not clearly positive.
+    bool factor(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                std::span<const Real> cfm, std::span<const std::uint8_t> free);
+    // Solves A_FF y = x for the free rows in place: x holds the right-hand side at the free rows'
+    // indices on entry and y there on return; other entries are left alone.
+    void solve(std::span<Real> x) const;
+
+private:
+    void order();
+    int frontSlot(int column, int group) const;
+    void assemble(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, std::span<const Real> cfm);
+    bool eliminate(int group);
+
+    // Structure (analyse): groups numbered in elimination order. sortedKeys_ are the body pairs of
+    // the last order(), ascending; positionOf_ maps their index to a group.
+    std::vector<std::uint64_t> rowKey_, groupKeys_, sortedKeys_, scratchKeys_;
+    std::vector<int> positionOf_, groupOfRow_;
+    std::vector<int> rowStart_, groupRows_;  // rows of each group, ascending
+    std::vector<int> frontStart_, front_;    // later groups coupled to each group, fill included, ascending
+    std::vector<int> bodyStart_, bodyRows_;  // rows touching each dynamic body, ascending
+    std::vector<int> fill_, scratchInts_;    // scratch
+    std::vector<std::uint64_t> adjacency_;   // scratch of order(): bit matrix of the group graph
+
+    // Values (factor): per group, its free rows; per group a column panel holding its diagonal
+    // block (L below the unit diagonal, D on it) above the blocks of its front groups.
+    std::vector<int> size_, local_, varStart_;
+    std::vector<int> panelStart_, panelHeight_, blockOffset_;
+    std::vector<Real> values_, diagonal_;  // diagonal_: each free row's own A_rr, for the pivot test
+    mutable std::vector<Real> work_;
+};
+
+}  // namespace af

@@ -1,0 +1,288 @@
+#include "sparse_lcp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace af {
+
+namespace {
+
+// Guesses tried before giving up. A resting figure needs one, a step with a few new contacts or
+// limits two to five. Past this the pattern is far from the guess (everything hits the ground at
+// once) and the pivoting solvers, which always finish, are cheaper than more trials. Friction
+// coupling makes the problem neither symmetric nor a P-matrix one, so switching rules alone do
+// not promise to settle.
+constexpr int kMaxTrials = 12;
+// Trials without fewer wrong rows after which only one row is switched per trial (Murty's
+// least-index rule), instead of all of them (which may cycle).
+constexpr int kStaleTrials = 3;
+
+Real mid(Real lo, Real hi, Real v) { return std::min(hi, std::max(lo, v)); }
+
+bool clamped(LcpRowState s) { return s == LcpRowState::AtLower || s == LcpRowState::AtUpper; }
+
+}  // namespace
+
+int SparseLcpSolver::source(const LcpProblem& problem, std::size_t i) const {
+    return problem.findex.empty() ? -1 : problem.findex[i];
+}
+
+bool SparseLcpSolver::sliding(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const {
+    const int s = source(problem, i);
+    return s >= 0 && clamped(states[i]) && states[static_cast<std::size_t>(s)] == LcpRowState::Free;
+}
+
+void SparseLcpSolver::bounds(const LcpProblem& problem, std::span<const Real> x) {
+    for (std::size_t i = 0; i < lo_.size(); ++i) {
+        const int s = source(problem, i);
+        if (s >= 0) {
+            const Real box = problem.mu[i] * std::abs(x[static_cast<std::size_t>(s)]);
+            lo_[i] = -box;
+            hi_[i] = box;
+        } else {
+            lo_[i] = problem.lo[i];
+            hi_[i] = problem.hi[i];
+        }
+    }
+}
+
+// The bodies' velocity change M⁻¹Jᵀx of the rows with use[i] (all rows if use is empty).
+void SparseLcpSolver::velocityChange(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                                     std::span<const Real> x, std::span<const std::uint8_t> use) {
+    std::fill(linear_.begin(), linear_.end(), Vec3::Zero());
+    std::fill(angular_.begin(), angular_.end(), Vec3::Zero());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (x[i] == 0 || (!use.empty() && !use[i])) continue;
+        const ConstraintRow& r = rows[i];
+        const RowResponse& m = responses[i];
+        if (r.bodyA != kWorldBody) {
+            linear_[static_cast<std::size_t>(r.bodyA)] += x[i] * m.linearA;
+            angular_[static_cast<std::size_t>(r.bodyA)] += x[i] * m.angularA;
+        }
+        if (r.bodyB != kWorldBody) {
+            linear_[static_cast<std::size_t>(r.bodyB)] += x[i] * m.linearB;
+            angular_[static_cast<std::size_t>(r.bodyB)] += x[i] * m.angularB;
+        }
+    }
+}
+
+// J of the row times the velocity change held in linear_ and angular_.
+Real SparseLcpSolver::along(const ConstraintRow& r) const {
+    Real v = 0;
+    if (r.bodyA != kWorldBody)
+        v += r.linearA.dot(linear_[static_cast<std::size_t>(r.bodyA)]) + r.angularA.dot(angular_[static_cast<std::size_t>(r.bodyA)]);
+    if (r.bodyB != kWorldBody)
+        v += r.linearB.dot(linear_[static_cast<std::size_t>(r.bodyB)]) + r.angularB.dot(angular_[static_cast<std::size_t>(r.bodyB)]);
+    return v;
+}
+
+// x_F = A_FF⁻¹ (b_F − A_F,fixed x_fixed) for the free rows, from the rows marked in use_.
+void SparseLcpSolver::solveFree(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                                std::span<const Real> b, std::span<const Real> x, std::span<Real> out) {
+    velocityChange(rows, responses, x, use_);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        if (free_[i]) out[i] = b[i] - along(rows[i]);
+    factor_.solve(out);
+}
+
+SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                                       const LcpProblem& problem, std::span<const RigidBody> bodies, std::span<Real> x,
+                                       std::span<LcpRowState> states, Real tolerance) {
+    SparseLcpResult result;
+    const std::size_t n = rows.size();
+    if (n == 0) return result;
+    if (!factor_.analyse(rows, bodies)) {
+        result.status = LcpStatus::InvalidInput;
+        return result;
+    }
+    lo_.resize(n);
+    hi_.resize(n);
+    w_.resize(n);
+    rhs_.resize(n);
+    next_.resize(n);
+    use_.resize(n);
+    free_.assign(n, 2);  // neither free nor clamped: the first trial factorises
+    linear_.resize(bodies.size());
+    angular_.resize(bodies.size());
+
+    Real bScale = 1;
+    for (std::size_t i = 0; i < n; ++i) {
+        bScale = std::max(bScale, std::abs(problem.b[i]));
+        const bool lower = std::isfinite(problem.lo[i]) || source(problem, i) >= 0;
+        const bool upper = std::isfinite(problem.hi[i]) || source(problem, i) >= 0;
+        if (!lower && !upper) {
+            states[i] = LcpRowState::Free;
+        } else if (states[i] == LcpRowState::Unknown || states[i] == LcpRowState::Failed) {
+            // A new contact or limit starts without pushing; a new friction row sticks.
+            states[i] = lower && upper ? LcpRowState::Free : lower ? LcpRowState::AtLower : LcpRowState::AtUpper;
+        }
+    }
+    const Real wTolerance = tolerance * bScale;
+
+    int fewestWrong = std::numeric_limits<int>::max(), stale = 0;
+    for (int trial = 1; trial <= kMaxTrials; ++trial) {
+        result.trials = trial;
+        if (!solvePattern(rows, responses, problem, x, states, result)) return result;
+        for (std::size_t i = 0; i < n; ++i) use_[i] = 1;
+        velocityChange(rows, responses, x, {});
+        for (std::size_t i = 0; i < n; ++i)
+            w_[i] = along(rows[i]) + (problem.cfm.empty() ? 0 : problem.cfm[i]) * x[i] - problem.b[i];
+        bounds(problem, x);
+
+        int wrong = 0, firstWrong = -1;
+        for (std::size_t i = 0; i < n; ++i) {
+            const Real xTolerance = tolerance * std::max({Real(1), std::isfinite(lo_[i]) ? std::abs(lo_[i]) : 0,
+                                                          std::isfinite(hi_[i]) ? std::abs(hi_[i]) : 0});
+            LcpRowState want = states[i];
+            if (states[i] == LcpRowState::Free) {
+                if (x[i] < lo_[i] - xTolerance) want = LcpRowState::AtLower;
+                if (x[i] > hi_[i] + xTolerance) want = LcpRowState::AtUpper;
+            } else if (states[i] == LcpRowState::AtLower && lo_[i] != hi_[i] && w_[i] < -wTolerance) {
+                want = LcpRowState::Free;
+            } else if (states[i] == LcpRowState::AtUpper && lo_[i] != hi_[i] && w_[i] > wTolerance) {
+                want = LcpRowState::Free;
+            }
+            next_[i] = want;
+            if (want == states[i]) continue;
+            ++wrong;
+            if (firstWrong < 0) firstWrong = static_cast<int>(i);
+        }
+        if (wrong == 0) {
+            for (std::size_t i = 0; i < n; ++i)
+                result.residual = std::max(result.residual, std::abs(x[i] - mid(lo_[i], hi_[i], x[i] - w_[i])));
+            return result;
+        }
+        stale = wrong < fewestWrong ? 0 : stale + 1;
+        fewestWrong = std::min(fewestWrong, wrong);
+        if (stale < kStaleTrials) {
+            std::copy(next_.begin(), next_.end(), states.begin());
+        } else {
+            states[static_cast<std::size_t>(firstWrong)] = next_[static_cast<std::size_t>(firstWrong)];
+        }
+        // A friction row whose normal stops pushing has nothing to push with; when the normal
+        // pushes again it starts sticking.
+        for (std::size_t i = 0; i < n; ++i) {
+            const int s = source(problem, i);
+            if (s < 0) continue;
+            const bool normalPushes = states[static_cast<std::size_t>(s)] == LcpRowState::Free;
+            if (!normalPushes && x[static_cast<std::size_t>(s)] == 0) states[i] = LcpRowState::AtLower;
+            if (normalPushes && states[i] == LcpRowState::AtLower && lo_[i] == hi_[i]) states[i] = LcpRowState::Free;
+        }
+    }
+    result.status = LcpStatus::NotConverged;
+    return result;
+}
+
+// Solves one pattern exactly. Rows at a bound take it (a friction row's box from its normal's
+// impulse when the normal is itself at a bound); the free rows' equations are solved with the
+// sparse factorisation. A friction row at its box while its normal is free (sliding) has
+// λ_k = σ_k μ_k λ_n(k), which couples it to the solve: with x0 the free rows' answer for λ_k = 0
+// and g_k their answer to a unit λ_k, the sliding impulses β solve the small system
+//     β_k = σ_k μ_k (x0_n(k) + Σ_j g_j,n(k) β_j),
+// one sparse solve per sliding row and a dense solve of their number.
+bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                                   const LcpProblem& problem, std::span<Real> x, std::span<const LcpRowState> states,
+                                   SparseLcpResult& result) {
+    const std::size_t n = rows.size();
+    bool freeSetChanged = false;
+    slidingRows_.clear();
+    for (std::size_t pass = 0; pass < 2; ++pass)  // normals before the friction rows they bound
+        for (std::size_t i = 0; i < n; ++i) {
+            const bool coupled = source(problem, i) >= 0;
+            if (coupled != (pass == 1)) continue;
+            const std::uint8_t isFree = states[i] == LcpRowState::Free ? 1 : 0;
+            freeSetChanged = freeSetChanged || free_[i] != isFree;
+            free_[i] = isFree;
+            use_[i] = clamped(states[i]) ? 1 : 0;
+            if (sliding(problem, states, i)) {
+                slidingRows_.push_back(static_cast<int>(i));
+                use_[i] = 0;
+                continue;
+            }
+            if (!clamped(states[i])) continue;
+            Real lo = problem.lo[i], hi = problem.hi[i];
+            if (coupled) {
+                hi = problem.mu[i] * std::abs(x[static_cast<std::size_t>(source(problem, i))]);
+                lo = -hi;
+            }
+            x[i] = states[i] == LcpRowState::AtLower ? lo : hi;
+        }
+    if (freeSetChanged) {
+        ++result.factorisations;
+        if (!factor_.factor(rows, responses, problem.cfm, free_)) {
+            result.status = LcpStatus::Unsatisfiable;
+            return false;
+        }
+    }
+    solveFree(rows, responses, problem.b, x, x);
+    const std::size_t k = slidingRows_.size();
+    if (k == 0) return true;
+
+    // g_j for each sliding row j, stored row after row (n entries each, free rows filled).
+    response_.resize(k * n);
+    for (std::size_t i = 0; i < n; ++i) use_[i] = 0;
+    unit_.assign(n, 0);
+    for (std::size_t j = 0; j < k; ++j) {
+        const std::size_t row = static_cast<std::size_t>(slidingRows_[j]);
+        unit_[row] = 1;
+        use_[row] = 1;
+        std::span<Real> g(&response_[j * n], n);
+        solveFree(rows, responses, zero_(n), unit_, g);
+        unit_[row] = 0;
+        use_[row] = 0;
+    }
+    // (I − D G) β = D x0_n with D = diag(σ μ), G_ij = g_j at row i's normal.
+    small_.assign(k * k, 0);
+    beta_.resize(k);
+    for (std::size_t i = 0; i < k; ++i) {
+        const std::size_t row = static_cast<std::size_t>(slidingRows_[i]);
+        const std::size_t normal = static_cast<std::size_t>(source(problem, row));
+        const Real d = (states[row] == LcpRowState::AtLower ? -1 : 1) * problem.mu[row];
+        for (std::size_t j = 0; j < k; ++j) small_[i * k + j] = (i == j ? 1 : 0) - d * response_[j * n + normal];
+        beta_[i] = d * x[normal];
+    }
+    if (!solveSmall(k)) {
+        result.status = LcpStatus::Unsatisfiable;
+        return false;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!free_[i]) continue;
+        for (std::size_t j = 0; j < k; ++j) x[i] += beta_[j] * response_[j * n + i];
+    }
+    for (std::size_t j = 0; j < k; ++j) x[static_cast<std::size_t>(slidingRows_[j])] = beta_[j];
+    ++result.couplingSolves;
+    return true;
+}
+
+std::span<const Real> SparseLcpSolver::zero_(std::size_t n) {
+    zeros_.assign(n, 0);
+    return zeros_;
+}
+
+// Gaussian elimination with partial pivoting of small_ (k×k) against beta_, in place.
+bool SparseLcpSolver::solveSmall(std::size_t k) {
+    for (std::size_t c = 0; c < k; ++c) {
+        std::size_t pivot = c;
+        for (std::size_t r = c + 1; r < k; ++r)
+            if (std::abs(small_[r * k + c]) > std::abs(small_[pivot * k + c])) pivot = r;
+        if (!(std::abs(small_[pivot * k + c]) > 1e-12)) return false;
+        if (pivot != c) {
+            for (std::size_t j = 0; j < k; ++j) std::swap(small_[c * k + j], small_[pivot * k + j]);
+            std::swap(beta_[c], beta_[pivot]);
+        }
+        for (std::size_t r = c + 1; r < k; ++r) {
+            const Real f = small_[r * k + c] / small_[c * k + c];
+            if (f == 0) continue;
+            for (std::size_t j = c; j < k; ++j) small_[r * k + j] -= f * small_[c * k + j];
+            beta_[r] -= f * beta_[c];
+        }
+    }
+    for (std::size_t c = k; c-- > 0;) {
+        for (std::size_t j = c + 1; j < k; ++j) beta_[c] -= small_[c * k + j] * beta_[j];
+        beta_[c] /= small_[c * k + c];
+    }
+    return true;
+}
+
+}  // namespace af

@@ -1,0 +1,65 @@
+#pragma once
+// The fast path of an island's constraint solve: the boxed LCP of af/dynamics/lcp.h on the rows
+// J M⁻¹ Jᵀ of af/dynamics/constraint_row.h, solved by guessing which rows are free and which sit
+// at a bound (the previous step's answer: a resting figure keeps its pattern), solving the free
+// rows' equations with the sparse factorisation of sparse_factor.h (time linear in the bodies for
+// a figure on the ground), and correcting the guess where it was wrong: free rows beyond a bound
+// go to it, clamped rows pulling the wrong way are freed (block principal pivoting). Each trial
+// is solved exactly, friction coupling included: a sliding friction row's impulse is μ times its
+// normal's, solved together with the free rows (see solvePattern).
+//
+// No matrix of all rows is ever formed: A's products go through the bodies (M⁻¹Jᵀ per row).
+// The answer is accepted only when every row is complementary within the tolerance; when the
+// guesses do not settle within a few trials (a tumbling figure whose contacts all change at once)
+// the solve says so and the caller falls back to the pivoting solvers, which always finish.
+
+#include "af/dynamics/lcp.h"
+#include "sparse_factor.h"
+
+#include <span>
+#include <vector>
+
+namespace af {
+
+struct SparseLcpResult {
+    LcpStatus status = LcpStatus::Solved;  // NotConverged: no answer, fall back; InvalidInput:
+                                           // rows the factorisation cannot take (see analyse)
+    int trials = 0;                        // guesses solved (1: the warm start held)
+    int couplingSolves = 0;                // trials with sliding friction rows (solved coupled)
+    int factorisations = 0;
+    Real residual = 0;                     // natural residual (lcp.h) of the answer
+};
+
+class SparseLcpSolver {
+public:
+    // Solves the problem's b, bounds, friction coupling and CFM (problem.a is not read) for the
+    // rows, whose responses M⁻¹Jᵀ are given. x and states carry the guess in (Unknown states are
+    // guessed from the bounds) and the answer out; on failure they hold the last trial.
+    SparseLcpResult solve(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                          const LcpProblem& problem, std::span<const RigidBody> bodies, std::span<Real> x,
+                          std::span<LcpRowState> states, Real tolerance);
+
+private:
+    bool solvePattern(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                      const LcpProblem& problem, std::span<Real> x, std::span<const LcpRowState> states,
+                      SparseLcpResult& result);
+    void solveFree(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                   std::span<const Real> b, std::span<const Real> x, std::span<Real> out);
+    bool solveSmall(std::size_t k);
+    std::span<const Real> zero_(std::size_t n);
+    int source(const LcpProblem& problem, std::size_t i) const;
+    bool sliding(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const;
+    void bounds(const LcpProblem& problem, std::span<const Real> x);
+    void velocityChange(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                        std::span<const Real> x, std::span<const std::uint8_t> use);
+    Real along(const ConstraintRow& row) const;
+
+    SparseRowFactor factor_;
+    std::vector<Real> lo_, hi_, w_, rhs_, unit_, zeros_, response_, small_, beta_;
+    std::vector<std::uint8_t> free_, use_;
+    std::vector<int> slidingRows_;
+    std::vector<LcpRowState> next_;
+    std::vector<Vec3> linear_, angular_;
+};
+
+}  // namespace af

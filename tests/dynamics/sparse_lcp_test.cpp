@@ -1,0 +1,255 @@
+// The sparse path (sparse_factor.h, sparse_lcp.h) against the dense exact one (RowSystem +
+// LcpExactSolver) on the same rows: the factorisation of any free set against a dense LDLᵀ, and
+// the LCP's impulses on figures with limits, joint friction, contacts with friction, loops and a
+// second path to the world. Also that a held guess costs one trial, and that rows the
+// factorisation cannot take are refused rather than solved wrongly.
+
+#include "dynamics/sparse_lcp.h"
+#include "row_scene_util.h"
+
+#include <Eigen/Dense>
+
+namespace af {
+namespace {
+
+using namespace test;
+
+// What the sparse solver is given: the rows (friction held at 0 for the position problem, as
+// World does), their responses and the problem's right-hand side and bounds.
+struct Rows {
+    ConstraintRows rows;
+    RowSystem system;
+    std::vector<RowResponse> responses;
+
+    Rows(const Scene& scene, bool position) : rows(scene.rows) {
+        if (position) holdFrictionAtZero(rows, scene.ranges);
+        system.build(rows, scene.bodies);
+        if (position) {
+            system.setPositionRhs(rows);
+        } else {
+            system.setVelocityRhs(rows, scene.bodies);
+        }
+        for (std::size_t i = 0; i < rows.size(); ++i) responses.push_back(system.response(i));
+    }
+};
+
+// ‖A_FF y − r‖∞ / (‖A_FF‖∞ ‖y‖∞) of the sparse solve of random right-hand sides on random free
+// sets, against the same of Eigen's dense LDLᵀ (which rounding alone allows).
+void expectFactorSolvesLikeDense(const Scene& scene, unsigned seed, const char* what) {
+    SCOPED_TRACE(what);
+    Rows in(scene, false);
+    const std::size_t n = in.rows.size();
+    const LcpProblem p = in.system.problem();
+    SparseRowFactor factor;
+    ASSERT_TRUE(factor.analyse(in.rows.all(), scene.bodies));
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<Real> u(-1, 1);
+    Real worstSparse = 0, worstDense = 0;
+    for (int trial = 0; trial < 20; ++trial) {
+        std::vector<std::uint8_t> free(n);
+        std::vector<int> index;
+        for (std::size_t i = 0; i < n; ++i) {
+            free[i] = trial == 0 || u(rng) < 0.4 ? 1 : 0;
+            if (free[i]) index.push_back(static_cast<int>(i));
+        }
+        const Eigen::Index m = static_cast<Eigen::Index>(index.size());
+        Eigen::MatrixXd a(m, m);
+        Eigen::VectorXd r(m);
+        for (Eigen::Index i = 0; i < m; ++i) {
+            const std::size_t ri = static_cast<std::size_t>(index[static_cast<std::size_t>(i)]);
+            r(i) = u(rng);
+            for (Eigen::Index j = 0; j < m; ++j) a(i, j) = p.a[ri * n + static_cast<std::size_t>(index[static_cast<std::size_t>(j)])];
+            a(i, i) += p.cfm[ri];
+        }
+        ASSERT_TRUE(factor.factor(in.rows.all(), in.responses, p.cfm, free));
+        std::vector<Real> x(n, 7.0);
+        for (Eigen::Index i = 0; i < m; ++i) x[static_cast<std::size_t>(index[static_cast<std::size_t>(i)])] = r(i);
+        factor.solve(x);
+        Eigen::VectorXd y(m);
+        for (Eigen::Index i = 0; i < m; ++i) y(i) = x[static_cast<std::size_t>(index[static_cast<std::size_t>(i)])];
+        for (std::size_t i = 0; i < n; ++i)
+            if (!free[i]) EXPECT_EQ(x[i], 7.0) << "a row outside the free set was written";
+        const Eigen::VectorXd dense = a.ldlt().solve(r);
+        const Real norm = a.cwiseAbs().rowwise().sum().maxCoeff();
+        worstSparse = std::max(worstSparse, (a * y - r).lpNorm<Eigen::Infinity>() / (norm * y.lpNorm<Eigen::Infinity>()));
+        worstDense = std::max(worstDense, (a * dense - r).lpNorm<Eigen::Infinity>() / (norm * dense.lpNorm<Eigen::Infinity>()));
+    }
+    std::printf("sparse factor, %s (%zu rows): relative residual %.2g (dense LDLT %.2g)\n", what, n, worstSparse, worstDense);
+    EXPECT_LE(worstSparse, std::max(Real(1e-14), 100 * worstDense));
+}
+
+TEST(SparseRowFactor, SolvesAnyFreeSetAsADenseFactorisationDoes) {
+    TreeSolver tree;
+    Scene loops(loopFigure());
+    spin(loops, 7, 3);
+    tree.setStructure(loops.bodies, loops.joints);
+    for (int i = 0; i < 5; ++i) step(loops, tree);
+    loops.write();
+    expectFactorSolvesLikeDense(loops, 1, "loops and a second path to the world");
+    TreeSolver chainTree, humanoidTree;
+    expectFactorSolvesLikeDense(freeChainOnTheGround(chainTree), 2, "free chain on the ground");
+    expectFactorSolvesLikeDense(humanoidWithContacts(humanoidTree), 3, "humanoid with contacts");
+}
+
+struct SparseRun {
+    SparseLcpResult result;
+    std::vector<Real> lambda;
+    std::vector<LcpRowState> states;
+};
+
+// The sparse solve of a scene's velocity or position problem, from the states `guess` (all
+// unknown if empty).
+SparseRun solveSparse(const Scene& scene, bool position, std::span<const LcpRowState> guess = {}) {
+    Rows in(scene, position);
+    SparseRun run;
+    run.lambda.assign(in.rows.size(), 0);
+    run.states.assign(in.rows.size(), LcpRowState::Unknown);
+    std::copy(guess.begin(), guess.end(), run.states.begin());
+    SparseLcpSolver solver;
+    run.result = solver.solve(in.rows.all(), in.responses, in.system.problem(), scene.bodies, run.lambda, run.states, 1e-10);
+    return run;
+}
+
+// A solved sparse answer against the dense one: the bodies' velocity change (or move) M⁻¹Jᵀλ,
+// which is unique, within 1e-9 of the largest; and the dense problem's natural residual at the
+// sparse λ within 1e-9 of the largest impulse. (λ itself need not be unique where rows are
+// redundant up to their CFM.) Returns the relative velocity difference.
+Real expectSameAsDense(const Scene& scene, bool position, const SparseRun& sparse, const std::string& what) {
+    SCOPED_TRACE(what);
+    EXPECT_EQ(sparse.result.status, LcpStatus::Solved) << sparse.result.trials << " trials";
+    if (sparse.result.status != LcpStatus::Solved) return kInfinity;
+    Dense dense;
+    solveDense(scene, position, dense);
+    EXPECT_EQ(dense.result.status, LcpStatus::Solved);
+    Rows in(scene, position);
+    const std::size_t bodies = scene.bodies.size();
+    std::vector<Vec3> linear(bodies), angular(bodies), denseLinear(bodies), denseAngular(bodies);
+    accumulateResponses(in.rows.all(), in.responses, sparse.lambda, linear, angular);
+    accumulateResponses(in.rows.all(), in.responses, dense.lambda, denseLinear, denseAngular);
+    Real scale = 1, worst = 0;
+    for (std::size_t k = 0; k < bodies; ++k) scale = std::max({scale, denseLinear[k].norm(), denseAngular[k].norm()});
+    for (std::size_t k = 0; k < bodies; ++k)
+        worst = std::max({worst, (linear[k] - denseLinear[k]).norm(), (angular[k] - denseAngular[k]).norm()});
+    EXPECT_LE(worst, 1e-9 * scale);
+    const Real lambdaScale = std::max(Real(1), largest(dense.lambda));
+    EXPECT_LE(sparse.result.residual, 1e-9 * lambdaScale);
+    EXPECT_LE(lcpResidual(dense.system.problem(), sparse.lambda), 1e-9 * lambdaScale);
+    return worst / scale;
+}
+
+void report(const char* what, const Scene& scene, Real velocity, Real position) {
+    std::printf("sparse vs dense, %s (%zu rows): max |Δv_sparse − Δv_dense| / max |Δv|: velocity %.2g, position %.2g\n",
+                what, scene.rows.size(), velocity, position);
+}
+
+// The shaken humanoid's steps, limits engaging and joint friction slipping, each solve guessed
+// from the previous step's answer as World does (here by row index, while the rows stay the
+// same): the guesses settle in a few trials, the answers agree with the dense solve. A solve may
+// give up where the pattern changed a lot (the caller then pivots); that stays rare.
+TEST(SparseLcp, ShakenHumanoidWithLimitsAndJointFrictionMatchesTheDenseSolve) {
+    Scene scene(hungHumanoid());
+    spin(scene, 3, 6);
+    TreeSolver tree;
+    tree.setStructure(scene.bodies, scene.joints);
+    Real velocity = 0, position = 0;
+    int withLimits = 0, gaveUp = 0, trials = 0;
+    const int steps = 60;
+    SparseRun lastVelocity, lastPosition;
+    for (int i = 0; i < steps; ++i) {
+        step(scene, tree);
+        scene.write();
+        if (scene.count(&JointRowRange::limitRows) >= 4) ++withLimits;
+        const std::string at = ", step " + std::to_string(i);
+        for (const bool isPosition : {false, true}) {
+            SparseRun& last = isPosition ? lastPosition : lastVelocity;
+            const bool same = last.states.size() == scene.rows.size();
+            SparseRun run = solveSparse(scene, isPosition, same ? std::span<const LcpRowState>(last.states) : std::span<const LcpRowState>());
+            trials += run.result.trials;
+            if (run.result.status != LcpStatus::Solved) {
+                ++gaveUp;
+                last = {};
+                continue;
+            }
+            Real& worst = isPosition ? position : velocity;
+            worst = std::max(worst, expectSameAsDense(scene, isPosition, run, (isPosition ? "position" : "velocity") + at));
+            last = std::move(run);
+        }
+    }
+    report("shaken humanoid, 60 steps", scene, velocity, position);
+    std::printf("sparse, shaken humanoid: %.2f trials per solve, %d of %d solves gave up\n",
+                static_cast<double>(trials) / (2 * steps), gaveUp, 2 * steps);
+    EXPECT_GE(withLimits, 8) << "poses with at least 4 limit rows";
+    EXPECT_LE(gaveUp, 2 * steps / 20) << "at most one solve in 20";
+    EXPECT_LE(trials, 3 * 2 * steps) << "three trials per solve or fewer on average";
+}
+
+// Contacts that all arrive at once, pushing and sliding: the sparse solve is meant for guesses
+// close to the answer (the previous step's), so from the dense answer's pattern it settles at
+// once and agrees; cold it may give up (the caller then pivots), which is reported.
+void expectSameAsDenseFromItsPattern(const char* what, const Scene& scene) {
+    Real velocity = 0, position = 0;
+    for (const bool isPosition : {false, true}) {
+        Dense dense;
+        solveDense(scene, isPosition, dense);
+        const SparseRun warm = solveSparse(scene, isPosition, dense.states);
+        EXPECT_LE(warm.result.trials, 2) << what;
+        (isPosition ? position : velocity) = expectSameAsDense(scene, isPosition, warm, what);
+        const SparseRun cold = solveSparse(scene, isPosition);
+        std::printf("sparse, %s, %s: from the dense pattern %d trials, cold %d trials (%s)\n", what,
+                    isPosition ? "position" : "velocity", warm.result.trials, cold.result.trials, toString(cold.result.status));
+        if (cold.result.status == LcpStatus::Solved) expectSameAsDense(scene, isPosition, cold, std::string(what) + ", cold");
+    }
+    report(what, scene, velocity, position);
+}
+
+TEST(SparseLcp, ContactsWithFrictionLoopsAndChainsMatchTheDenseSolve) {
+    TreeSolver chainTree, humanoidTree, loopTree;
+    expectSameAsDenseFromItsPattern("free chain on the ground", freeChainOnTheGround(chainTree));
+    expectSameAsDenseFromItsPattern("humanoid with contacts", humanoidWithContacts(humanoidTree));
+    Scene loops(loopFigure());
+    spin(loops, 7, 3);
+    loopTree.setStructure(loops.bodies, loops.joints);
+    for (int i = 0; i < 20; ++i) step(loops, loopTree);
+    loops.write();
+    expectSameAsDenseFromItsPattern("loops", loops);
+}
+
+// The answer's own states as the guess: nothing to correct, one factorisation.
+TEST(SparseLcp, AGuessThatHoldsCostsOneTrial) {
+    TreeSolver tree;
+    const Scene scene = humanoidWithContacts(tree);
+    Dense dense;
+    solveDense(scene, false, dense);
+    const SparseRun first = solveSparse(scene, false, dense.states);
+    ASSERT_EQ(first.result.status, LcpStatus::Solved);
+    const SparseRun again = solveSparse(scene, false, first.states);
+    EXPECT_EQ(again.result.status, LcpStatus::Solved);
+    EXPECT_EQ(again.result.trials, 1);
+    EXPECT_EQ(again.result.factorisations, 1);
+    EXPECT_GT(again.result.couplingSolves, 0) << "some contacts slide";
+}
+
+// Three rows of one joint that repeat each other and carry no CFM: no pivot for the third.
+TEST(SparseLcp, DependentRowsWithoutCfmAreRefused) {
+    const std::vector<RigidBody> bodies = {RigidBody::dynamic(2, Mat3::Identity(), Vec3(0, 0, -5), Quat::Identity())};
+    ConstraintRows rows;
+    for (const Vec3& axis : {Vec3::UnitX(), Vec3::UnitZ(), Vec3::UnitZ()}) {
+        ConstraintRow row;
+        row.bodyA = 0;
+        row.linearA = axis;
+        row.angularA = Vec3(0, 0, 5).cross(axis);
+        rows.add(row);
+    }
+    RowSystem system;
+    system.build(rows, bodies);
+    system.setVelocityRhs(rows, bodies);
+    std::vector<RowResponse> responses;
+    for (std::size_t i = 0; i < rows.size(); ++i) responses.push_back(system.response(i));
+    std::vector<Real> x(3, 0);
+    std::vector<LcpRowState> states(3, LcpRowState::Unknown);
+    SparseLcpSolver solver;
+    EXPECT_EQ(solver.solve(rows.all(), responses, system.problem(), bodies, x, states, 1e-10).status, LcpStatus::Unsatisfiable);
+}
+
+}  // namespace
+}  // namespace af
