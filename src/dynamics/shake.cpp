@@ -23,24 +23,6 @@ Real gyrationRadius(const RigidBody& b) {
     return b.inverseMass > 0 ? std::sqrt(b.inertia.trace() * b.inverseMass / 2) : 0;
 }
 
-}  // namespace
-
-void ShakeCorrection::capture(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
-                              const RowSystem& system) {
-    start_.clear();
-    responses_.clear();
-    factorised_ = false;
-    for (const JointRowRange& range : ranges)
-        for (int r = 0; r < range.equalityRows; ++r) {
-            const std::size_t i = static_cast<std::size_t>(range.first + r);
-            start_.push_back(rows[i]);
-            responses_.push_back(system.response(i));
-        }
-    findBlocks();
-}
-
-namespace {
-
 int findRoot(std::vector<int>& parent, int i) {
     while (parent[static_cast<std::size_t>(i)] != i) {
         parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
@@ -51,86 +33,315 @@ int findRoot(std::vector<int>& parent, int i) {
 
 }  // namespace
 
-void ShakeCorrection::findBlocks() {
+void ShakeCorrection::capture(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
+                              const RowSystem& system) {
+    start_.clear();
+    responses_.clear();
+    factorised_ = false;
+    // The order and the blocks depend only on which bodies the joints join and how many rows
+    // they have: a figure keeps them from step to step, and they are made again only when
+    // those change.
+    std::size_t count = 0;
+    bool same = true;
+    for (const JointRowRange& range : ranges) {
+        if (range.equalityRows == 0) continue;
+        const ConstraintRow& row = rows[static_cast<std::size_t>(range.first)];
+        if (count == groups_.size()) {
+            groups_.emplace_back();
+            same = false;
+        }
+        Group& g = groups_[count++];
+        same = same && g.size == range.equalityRows && g.bodyA == row.bodyA && g.bodyB == row.bodyB;
+        if (!same) {
+            g = Group{};
+            g.first = static_cast<int>(start_.size());
+            g.size = range.equalityRows;
+            g.bodyA = row.bodyA;
+            g.bodyB = row.bodyB;
+        }
+        for (int r = 0; r < range.equalityRows; ++r) {
+            const std::size_t i = static_cast<std::size_t>(range.first + r);
+            start_.push_back(rows[i]);
+            responses_.push_back(system.response(i));
+        }
+    }
+    if (same && count == groups_.size() && structured_) return;
+    groups_.resize(count);
+    findStructure();
+}
+
+void ShakeCorrection::findStructure() {
+    structured_ = true;
     int bodies = 0;
-    for (const ConstraintRow& r : start_) bodies = std::max({bodies, r.bodyA + 1, r.bodyB + 1});
+    for (const Group& g : groups_) bodies = std::max({bodies, g.bodyA + 1, g.bodyB + 1});
     parent_.resize(static_cast<std::size_t>(bodies));
     std::iota(parent_.begin(), parent_.end(), 0);
-    for (const ConstraintRow& r : start_)
-        if (r.bodyA != kWorldBody && r.bodyB != kWorldBody)
-            parent_[static_cast<std::size_t>(findRoot(parent_, r.bodyA))] = findRoot(parent_, r.bodyB);
-    // Blocks in the order of their first row; rows keep their order within a block.
+    for (const Group& g : groups_)
+        if (g.bodyA != kWorldBody && g.bodyB != kWorldBody)
+            parent_[static_cast<std::size_t>(findRoot(parent_, g.bodyA))] = findRoot(parent_, g.bodyB);
+    // Blocks in the order of their first group.
     blockOfRoot_.assign(static_cast<std::size_t>(bodies), -1);
-    blockOfRow_.resize(start_.size());
     blockCount_ = 0;
-    for (std::size_t i = 0; i < start_.size(); ++i) {
-        const ConstraintRow& r = start_[i];
-        const int body = r.bodyA != kWorldBody ? r.bodyA : r.bodyB;
-        int& block = blockOfRoot_[static_cast<std::size_t>(findRoot(parent_, body))];
+    for (Group& g : groups_) {
+        int& block = blockOfRoot_[static_cast<std::size_t>(findRoot(parent_, g.bodyA != kWorldBody ? g.bodyA : g.bodyB))];
         if (block < 0) block = static_cast<int>(blockCount_++);
-        blockOfRow_[i] = block;
+        g.block = block;
     }
+    orderGroups(bodies);
+
+    // Stable by block, so each block's groups keep the elimination order.
+    std::stable_sort(eliminated_.begin(), eliminated_.end(), [&](int x, int y) {
+        return groups_[static_cast<std::size_t>(x)].block < groups_[static_cast<std::size_t>(y)].block;
+    });
     if (blocks_.size() < blockCount_) blocks_.resize(blockCount_);
-    for (std::size_t b = 0; b < blockCount_; ++b) blocks_[b].size = 0;
-    for (const int b : blockOfRow_) ++blocks_[static_cast<std::size_t>(b)].size;
-    int first = 0;
-    for (std::size_t b = 0; b < blockCount_; ++b) {
-        blocks_[b].first = first;
-        first += blocks_[b].size;
-        blocks_[b].size = 0;
+    for (std::size_t b = 0; b < blockCount_; ++b) blocks_[b].size = blocks_[b].groups = 0;
+    order_.clear();
+    for (std::size_t e = 0; e < eliminated_.size(); ++e) {
+        Group& g = groups_[static_cast<std::size_t>(eliminated_[e])];
+        Block& block = blocks_[static_cast<std::size_t>(g.block)];
+        if (block.groups == 0) {
+            block.firstGroup = static_cast<int>(e);
+            block.firstRow = static_cast<int>(order_.size());
+        }
+        ++block.groups;
+        g.at = {block.size, g.size};
+        block.size += g.size;
+        for (int r = 0; r < g.size; ++r) order_.push_back(g.first + r);
     }
-    order_.resize(start_.size());
-    for (std::size_t i = 0; i < start_.size(); ++i) {
-        Block& block = blocks_[static_cast<std::size_t>(blockOfRow_[i])];
-        order_[static_cast<std::size_t>(block.first + block.size++)] = static_cast<int>(i);
+}
+
+// Elimination order over all groups (blocks never share a neighbour): simplicial groups (whose
+// neighbours are all coupled to each other) first; when none is left (a loop), the group with
+// fewest neighbours, and its neighbours become coupled (fill).
+void ShakeCorrection::orderGroups(int bodies) {
+    const std::size_t count = groups_.size();
+    // Groups at each body, as one list cut by body.
+    bodyGroupsBegin_.assign(static_cast<std::size_t>(bodies) + 1, 0);
+    for (const Group& g : groups_)
+        for (const int b : {g.bodyA, g.bodyB})
+            if (b != kWorldBody) ++bodyGroupsBegin_[static_cast<std::size_t>(b) + 1];
+    std::partial_sum(bodyGroupsBegin_.begin(), bodyGroupsBegin_.end(), bodyGroupsBegin_.begin());
+    bodyGroups_.resize(static_cast<std::size_t>(bodyGroupsBegin_.back()));
+    pending_.assign(bodyGroupsBegin_.begin(), bodyGroupsBegin_.end() - 1);
+    for (std::size_t i = 0; i < count; ++i)
+        for (const int b : {groups_[i].bodyA, groups_[i].bodyB})
+            if (b != kWorldBody) bodyGroups_[static_cast<std::size_t>(pending_[static_cast<std::size_t>(b)]++)] = static_cast<int>(i);
+
+    stamp_.assign(count, 0);
+    stampValue_ = 0;
+    adjacent_.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        std::vector<int>& adjacent = adjacent_[i];
+        adjacent.clear();
+        ++stampValue_;
+        stamp_[i] = stampValue_;
+        for (const int b : {groups_[i].bodyA, groups_[i].bodyB}) {
+            if (b == kWorldBody) continue;
+            for (int k = bodyGroupsBegin_[static_cast<std::size_t>(b)]; k < bodyGroupsBegin_[static_cast<std::size_t>(b) + 1]; ++k) {
+                const int h = bodyGroups_[static_cast<std::size_t>(k)];
+                if (stamp_[static_cast<std::size_t>(h)] != stampValue_) {
+                    stamp_[static_cast<std::size_t>(h)] = stampValue_;
+                    adjacent.push_back(h);
+                }
+            }
+        }
+    }
+
+    done_.assign(count, 0);
+    eliminated_.clear();
+    later_.clear();
+    pending_.resize(count);
+    for (std::size_t i = 0; i < count; ++i) pending_[i] = static_cast<int>(count - 1 - i);
+    while (eliminated_.size() < count) {
+        if (pending_.empty()) {
+            int best = -1;
+            std::size_t fewest = 0;
+            for (std::size_t i = 0; i < count; ++i) {
+                if (done_[i]) continue;
+                const std::size_t degree = static_cast<std::size_t>(std::count_if(
+                    adjacent_[i].begin(), adjacent_[i].end(), [&](int h) { return !done_[static_cast<std::size_t>(h)]; }));
+                if (best < 0 || degree < fewest) {
+                    best = static_cast<int>(i);
+                    fewest = degree;
+                }
+            }
+            eliminate(best);
+            continue;
+        }
+        const int g = pending_.back();
+        pending_.pop_back();
+        if (!done_[static_cast<std::size_t>(g)] && simplicial(g)) eliminate(g);
+    }
+}
+
+bool ShakeCorrection::simplicial(int group) {
+    const std::vector<int>& around = adjacent_[static_cast<std::size_t>(group)];
+    for (const int a : around) {
+        if (done_[static_cast<std::size_t>(a)]) continue;
+        ++stampValue_;
+        stamp_[static_cast<std::size_t>(a)] = stampValue_;
+        for (const int h : adjacent_[static_cast<std::size_t>(a)]) stamp_[static_cast<std::size_t>(h)] = stampValue_;
+        for (const int b : around)
+            if (!done_[static_cast<std::size_t>(b)] && stamp_[static_cast<std::size_t>(b)] != stampValue_) return false;
+    }
+    return true;
+}
+
+void ShakeCorrection::eliminate(int group) {
+    const std::size_t g = static_cast<std::size_t>(group);
+    done_[g] = 1;
+    eliminated_.push_back(group);
+    Group& eliminated = groups_[g];
+    eliminated.laterBegin = static_cast<int>(later_.size());
+    for (const int a : adjacent_[g])
+        if (!done_[static_cast<std::size_t>(a)]) later_.push_back(a);
+    eliminated.laterEnd = static_cast<int>(later_.size());
+    // Couple the remaining neighbours to each other (no-ops for a simplicial group).
+    for (int p = eliminated.laterBegin; p < eliminated.laterEnd; ++p) {
+        const int a = later_[static_cast<std::size_t>(p)];
+        std::vector<int>& around = adjacent_[static_cast<std::size_t>(a)];
+        for (int q = eliminated.laterBegin; q < eliminated.laterEnd; ++q) {
+            const int b = later_[static_cast<std::size_t>(q)];
+            if (b != a && std::find(around.begin(), around.end(), b) == around.end()) around.push_back(b);
+        }
+        pending_.push_back(a);
+    }
+}
+
+template <class F>
+void ShakeCorrection::forEachLater(const Group& g, int row, F&& f) const {
+    f(row + 1, g.at.start + g.at.size);
+    for (int p = g.laterBegin; p < g.laterEnd; ++p) {
+        const Range& h = groups_[static_cast<std::size_t>(later_[static_cast<std::size_t>(p)])].at;
+        f(h.start, h.start + h.size);
+    }
+}
+
+// K_pq: how row p's error moves per unit impulse along start row q, for every pair of rows the
+// factorisation reads (the fill's pairs, which share no body, get 0).
+void ShakeCorrection::fillBlock(const Block& block, const ConstraintRows& rows, std::vector<Real>& k) const {
+    const int n = block.size;
+    const int* captured = order_.data() + block.firstRow;
+    auto fill = [&](const Range& p, const Range& q) {
+        for (int i = p.start; i < p.start + p.size; ++i) {
+            const ConstraintRow& now = rows[nowRow_[static_cast<std::size_t>(captured[i])]];
+            for (int j = q.start; j < q.start + q.size; ++j) {
+                const ConstraintRow& s = start_[static_cast<std::size_t>(captured[j])];
+                const RowResponse& m = responses_[static_cast<std::size_t>(captured[j])];
+                k[static_cast<std::size_t>(i * n + j)] =
+                    along(now, s.bodyA, m.linearA, m.angularA) + along(now, s.bodyB, m.linearB, m.angularB);
+            }
+        }
+    };
+    for (int e = 0; e < block.groups; ++e) {
+        const Group& g = groups_[static_cast<std::size_t>(eliminated_[static_cast<std::size_t>(block.firstGroup + e)])];
+        fill(g.at, g.at);
+        for (int p = g.laterBegin; p < g.laterEnd; ++p) {
+            const Range& h = groups_[static_cast<std::size_t>(later_[static_cast<std::size_t>(p)])].at;
+            fill(g.at, h);
+            fill(h, g.at);
+        }
+    }
+}
+
+// LU in place, without pivoting: K is J₁ M⁻¹ J₀ᵀ with J₁ close to J₀, so close to symmetric
+// positive definite, where no pivoting is needed. False at a zero (or not finite) pivot.
+bool ShakeCorrection::factorBlock(const Block& block, std::vector<Real>& k) const {
+    const std::size_t n = static_cast<std::size_t>(block.size);
+    for (int e = 0; e < block.groups; ++e) {
+        const Group& g = groups_[static_cast<std::size_t>(eliminated_[static_cast<std::size_t>(block.firstGroup + e)])];
+        for (int row = g.at.start; row < g.at.start + g.at.size; ++row) {
+            const std::size_t r = static_cast<std::size_t>(row);
+            const Real pivot = k[r * n + r];
+            if (!(std::abs(pivot) > 0) || !std::isfinite(pivot)) return false;
+            forEachLater(g, row, [&](int i0, int i1) {
+                for (std::size_t i = static_cast<std::size_t>(i0); i < static_cast<std::size_t>(i1); ++i) k[i * n + r] /= pivot;
+            });
+            forEachLater(g, row, [&](int i0, int i1) {
+                for (std::size_t i = static_cast<std::size_t>(i0); i < static_cast<std::size_t>(i1); ++i) {
+                    const Real l = k[i * n + r];
+                    if (l == 0) continue;
+                    forEachLater(g, row, [&](int j0, int j1) {
+                        for (std::size_t j = static_cast<std::size_t>(j0); j < static_cast<std::size_t>(j1); ++j)
+                            k[i * n + j] -= l * k[r * n + j];
+                    });
+                }
+            });
+        }
+    }
+    return true;
+}
+
+// y ← K⁻¹ y with the factors of factorBlock: L (unit lower) forwards, then U backwards.
+void ShakeCorrection::solveBlock(const Block& block, const std::vector<Real>& k, Real* y) const {
+    const std::size_t n = static_cast<std::size_t>(block.size);
+    for (int e = 0; e < block.groups; ++e) {
+        const Group& g = groups_[static_cast<std::size_t>(eliminated_[static_cast<std::size_t>(block.firstGroup + e)])];
+        for (int row = g.at.start; row < g.at.start + g.at.size; ++row) {
+            const std::size_t r = static_cast<std::size_t>(row);
+            forEachLater(g, row, [&](int i0, int i1) {
+                for (std::size_t i = static_cast<std::size_t>(i0); i < static_cast<std::size_t>(i1); ++i) y[i] -= k[i * n + r] * y[r];
+            });
+        }
+    }
+    for (int e = block.groups - 1; e >= 0; --e) {
+        const Group& g = groups_[static_cast<std::size_t>(eliminated_[static_cast<std::size_t>(block.firstGroup + e)])];
+        for (int row = g.at.start + g.at.size - 1; row >= g.at.start; --row) {
+            const std::size_t r = static_cast<std::size_t>(row);
+            Real sum = y[r];
+            forEachLater(g, row, [&](int j0, int j1) {
+                for (std::size_t j = static_cast<std::size_t>(j0); j < static_cast<std::size_t>(j1); ++j) sum -= k[r * n + j] * y[j];
+            });
+            y[r] = sum / k[r * n + r];
+        }
     }
 }
 
 ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
                                              std::span<RigidBody> bodies, Real dt, Real closed) {
     Step step;
-    const Eigen::Index n = static_cast<Eigen::Index>(start_.size());
+    const std::size_t n = start_.size();
     if (n == 0) return step;
     drift_.resize(n);
     lambda_.resize(n);
-    nowRow_.resize(start_.size());
-    Eigen::Index i = 0;
+    nowRow_.resize(n);
+    std::size_t i = 0;
     for (const JointRowRange& range : ranges)
         for (int r = 0; r < range.equalityRows; ++r, ++i) {
-            nowRow_[static_cast<std::size_t>(i)] = static_cast<std::size_t>(range.first + r);
-            drift_[i] = rows[nowRow_[static_cast<std::size_t>(i)]].error - start_[static_cast<std::size_t>(i)].error;
+            nowRow_[i] = static_cast<std::size_t>(range.first + r);
+            drift_[i] = rows[nowRow_[i]].error - start_[i].error;
             step.drift = std::max(step.drift, std::abs(drift_[i]));
         }
     if (step.drift <= closed) return step;
-    // Later steps after a capture reuse the first one's matrices (simplified Newton): the bodies
+    // Later steps after a capture reuse the first one's factors (simplified Newton): the bodies
     // have moved since only by a correction the size of the drift, which changes K by as little.
-    for (std::size_t b = 0; b < blockCount_; ++b) {
-        Block& block = blocks_[b];
-        const int* rowsOfBlock = order_.data() + block.first;
-        if (!factorised_) {
-            block.k.resize(block.size, block.size);
-            for (int p = 0; p < block.size; ++p) {
-                // K_pq: how row p's error moves per unit impulse along start row q.
-                const ConstraintRow& now = rows[nowRow_[static_cast<std::size_t>(rowsOfBlock[p])]];
-                for (int q = 0; q < block.size; ++q) {
-                    const ConstraintRow& s = start_[static_cast<std::size_t>(rowsOfBlock[q])];
-                    const RowResponse& m = responses_[static_cast<std::size_t>(rowsOfBlock[q])];
-                    block.k(p, q) = along(now, s.bodyA, m.linearA, m.angularA) + along(now, s.bodyB, m.linearB, m.angularB);
-                }
-            }
-            block.lu.compute(block.k);
+    if (!factorised_) {
+        singular_ = false;
+        for (std::size_t b = 0; b < blockCount_; ++b) {
+            Block& block = blocks_[b];
+            block.k.resize(static_cast<std::size_t>(block.size) * static_cast<std::size_t>(block.size));
+            fillBlock(block, rows, block.k);
+            singular_ = singular_ || !factorBlock(block, block.k);
         }
-        block.rhs.resize(block.size);
-        for (int p = 0; p < block.size; ++p) block.rhs[p] = -drift_[rowsOfBlock[p]];
-        block.rhs = block.lu.solve(block.rhs);
-        for (int p = 0; p < block.size; ++p) lambda_[rowsOfBlock[p]] = block.rhs[p];
+        factorised_ = true;
     }
-    factorised_ = true;
+    if (singular_) {
+        // No finite move closes this drift: report one too large to be kept.
+        step.move = kInfinity;
+        return step;
+    }
+    for (std::size_t b = 0; b < blockCount_; ++b) {
+        const Block& block = blocks_[b];
+        y_.resize(static_cast<std::size_t>(block.size));
+        const int* captured = order_.data() + block.firstRow;
+        for (int p = 0; p < block.size; ++p) y_[static_cast<std::size_t>(p)] = -drift_[static_cast<std::size_t>(captured[p])];
+        solveBlock(block, block.k, y_.data());
+        for (int p = 0; p < block.size; ++p) lambda_[static_cast<std::size_t>(captured[p])] = y_[static_cast<std::size_t>(p)];
+    }
 
     linear_.resize(bodies.size());
     angular_.resize(bodies.size());
-    accumulateResponses(start_, responses_, std::span<const Real>(lambda_.data(), static_cast<std::size_t>(n)), linear_,
-                        angular_);
+    accumulateResponses(start_, responses_, lambda_, linear_, angular_);
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         displaceBody(bodies[b], linear_[b], angular_[b]);
         bodies[b].linearVelocity += linear_[b] / dt;

@@ -18,8 +18,6 @@
 #include "af/dynamics/joints.h"
 #include "row_system.h"
 
-#include <Eigen/Dense>
-
 #include <span>
 #include <vector>
 
@@ -39,36 +37,63 @@ public:
     // same order), one Newton step: moves the bodies and changes their velocities by move / dt.
     // The first step after a capture builds and factorises K; later ones reuse it. A drift of
     // at most `closed` (length units) is left as it is: nothing is factorised or moved (a
-    // resting figure).
+    // resting figure). If K is singular (a zero pivot: joints repeating each other's rows),
+    // nothing is moved and the move is reported as +∞, which no caller keeps.
     Step apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges, std::span<RigidBody> bodies,
                Real dt, Real closed);
 
 private:
-    using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
-    using Vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
-    // K is block diagonal: rows of joints that share no body (through other joints) do not see
-    // each other. Each block (one figure, as a rule) is factorised on its own, so an island of
-    // many touching figures costs as many small factorisations, not one large one.
-    struct Block {
-        int first = 0, size = 0;  // positions in order_
-        Matrix k;
-        Eigen::PartialPivLU<Matrix> lu;
-        Vector rhs;
+    // K = J₁ M⁻¹ J₀ᵀ couples two joints' rows only when the joints share a body. Eliminating the
+    // joints in a perfect order (a joint at the world or at a leaf body first: its neighbours
+    // all share its other body and are already coupled) leaves that pattern without fill for a
+    // figure whose joints form a tree, so K is factorised in time linear in the joints. Loops
+    // get the fill they need. Rows of joints that share no body (through other joints) form
+    // separate blocks, each factorised on its own, with its own dense storage.
+    struct Range {
+        int start = 0, size = 0;  // positions within a block
     };
-    void findBlocks();
+    struct Group {                // one joint's equality rows
+        int first = 0, size = 0;  // in the captured rows
+        int bodyA = kWorldBody, bodyB = kWorldBody;
+        int block = 0;
+        Range at;                         // where its rows sit in its block
+        int laterBegin = 0, laterEnd = 0;  // its neighbours when eliminated, in later_
+    };
+    struct Block {
+        int firstRow = 0, size = 0;      // positions in order_
+        int firstGroup = 0, groups = 0;  // positions in eliminated_
+        std::vector<Real> k;             // size × size, row-major; only the pattern is used
+    };
+    void findStructure();
+    void orderGroups(int bodies);
+    bool simplicial(int group);
+    void eliminate(int group);
+    void fillBlock(const Block& block, const ConstraintRows& rows, std::vector<Real>& k) const;
+    bool factorBlock(const Block& block, std::vector<Real>& k) const;
+    void solveBlock(const Block& block, const std::vector<Real>& k, Real* y) const;
+    // Calls f(range) for the rows that row `row` of group g couples to later in the order:
+    // the rest of its own rows, then its later neighbours' (first pass of the LU and the solve).
+    template <class F>
+    void forEachLater(const Group& g, int row, F&& f) const;
 
     std::vector<ConstraintRow> start_;
     std::vector<RowResponse> responses_;
-    std::vector<int> order_;         // captured rows grouped by block
-    std::vector<int> parent_;        // union-find over bodies
-    std::vector<int> blockOfRoot_;
+    std::vector<Group> groups_;
+    std::vector<std::vector<int>> adjacent_;  // per group: groups sharing a body, and fill
+    std::vector<int> eliminated_;        // groups in elimination order, grouped by block
+    std::vector<int> later_;
+    std::vector<int> stamp_, parent_, blockOfRoot_, bodyGroups_, bodyGroupsBegin_, pending_;
+    std::vector<char> done_;
+    int stampValue_ = 0;
     std::vector<Block> blocks_;
     std::size_t blockCount_ = 0;
-    std::vector<int> blockOfRow_;      // per captured row
+    std::vector<int> order_;           // captured rows, block by block in elimination order
     std::vector<std::size_t> nowRow_;  // per captured row: its index in the rows given to apply
-    Vector drift_, lambda_;
+    std::vector<Real> drift_, lambda_, y_;
     std::vector<Vec3> linear_, angular_;
-    bool factorised_ = false;  // the blocks hold K of this capture
+    bool structured_ = false;  // groups_, the blocks and the order are those of the last capture
+    bool factorised_ = false;  // the blocks hold the factors of K of this capture
+    bool singular_ = false;    // a zero pivot: no move can be trusted
 };
 
 }  // namespace af
