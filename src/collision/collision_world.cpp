@@ -2,12 +2,54 @@
 
 #include "af/collision/narrowphase.h"
 
+#include "shape_features.h"
+
 #include <algorithm>
+#include <cmath>
 
 namespace af {
 
+namespace {
+
+using collision_detail::BoxFeatures;
+
+// The box around a body's shape at `pose`, grown by `margin`: for a box from its centre and
+// extents (|R| · half), which is what the corners give, without placing eight of them.
+Aabb worldBounds(const ConvexShape& shape, const RigidPose& pose, Real margin) {
+    const BoxFeatures& box = shape.features().box;
+    if (!box.valid) {
+        return boundsOf(shape.polytope(), pose, margin);
+    }
+    const Vec3 centre = pose.apply(box.centre);
+    const Vec3 extent = (pose.rotation * box.axes).cwiseAbs() * box.half + Vec3::Constant(margin);
+    return {centre - extent, centre + extent};
+}
+
+// A lower bound of the height of the shape's lowest vertex above the plane (normal · vertex −
+// offset): for a box from its centre and extents, less the rounding by which that can differ from
+// the corners' own heights; for other shapes from the bounding sphere.
+Real heightAbove(const ConvexShape& shape, const RigidPose& pose, const Vec3& sphereCentre, Real radius,
+                 const Plane& plane) {
+    const BoxFeatures& box = shape.features().box;
+    if (!box.valid) {
+        return plane.normal.dot(sphereCentre) - radius - plane.offset;
+    }
+    const Vec3 centre = pose.apply(box.centre);
+    const Vec3 along = (pose.rotation * box.axes).transpose() * plane.normal;
+    const Real rounding = 1e-12 * (1 + std::abs(plane.offset) + centre.cwiseAbs().sum() + box.half.sum());
+    return plane.normal.dot(centre) - along.cwiseAbs().dot(box.half) - plane.offset - rounding;
+}
+
+}  // namespace
+
 int CollisionWorld::addBody(const Polytope& shape, const CollisionFilter& filter) {
-    bodies_.push_back({ConvexShape(shape), filter});
+    Body body{ConvexShape(shape), filter};
+    const BoxFeatures& box = body.shape.features().box;
+    body.centre = box.valid ? box.centre : body.shape.features().centre;
+    for (const Vec3& v : shape.vertices) {
+        body.radius = std::max(body.radius, (v - body.centre).norm());
+    }
+    bodies_.push_back(std::move(body));
     return static_cast<int>(bodies_.size()) - 1;
 }
 
@@ -65,8 +107,11 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
     // Each box holds everything the body can reach in the step, so a pair's boxes overlap
     // whenever the pair can get within its margin.
     boxes_.resize(bodies_.size());
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-        boxes_[i] = boundsOf(bodies_[i].shape.polytope(), poses[i], margin + reach[i] + moves[i].norm());
+    centres_.resize(bodies_.size());
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+        boxes_[i] = worldBounds(bodies_[i].shape, poses[i], margin + reach[i] + moves[i].norm());
+        centres_[i] = poses[i].apply(bodies_[i].centre);
+    }
     broadphase_.findPairs(boxes_, pairs_);
 
     BodyContact contact;
@@ -74,6 +119,9 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
         if (!isAwake(a) && !isAwake(b)) continue;
         if (!mayCollide(a, b)) continue;
         const Real pairMargin = margin + at(reach, a) + at(reach, b) + (at(moves, a) - at(moves, b)).norm();
+        // Bounding spheres farther apart than the margin: the query would find nothing.
+        const Real reachBoth = (at(bodies_, a).radius + at(bodies_, b).radius + pairMargin) * (1 + 1e-12);
+        if ((at(centres_, a) - at(centres_, b)).squaredNorm() > reachBoth * reachBoth) continue;
         contact.manifold = collide(at(bodies_, a).shape, pose(a), at(bodies_, b).shape, pose(b), pairMargin);
         if (contact.manifold.empty()) continue;
         contact.bodyA = a;
@@ -88,6 +136,8 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
             if (!mayCollideWithStatic(a, s)) continue;
             const Real staticMargin = margin + at(reach, a) + at(moves, a).norm();
             if (shape.isPlane) {
+                const Body& body = at(bodies_, a);
+                if (heightAbove(body.shape, pose(a), at(centres_, a), body.radius, shape.plane) > staticMargin) continue;
                 contact.manifold = collideWithPlane(bodyShape(a), pose(a), shape.plane, staticMargin);
             } else {
                 if (!boxes_[static_cast<std::size_t>(a)].overlaps(shape.bounds)) continue;

@@ -92,9 +92,12 @@ public:
 
 private:
     // Shapes are prepared once for the narrowphase (ConvexShape), which halves a query's cost.
+    // The bounding sphere (body frame) lets a pair farther apart than its margin skip the query.
     struct Body {
         ConvexShape shape;
         CollisionFilter filter;
+        Vec3 centre = Vec3::Zero();
+        Real radius = 0;
     };
     struct Static {
         ConvexShape shape;  // world space; empty for a plane
@@ -111,6 +114,7 @@ private:
     std::vector<std::pair<int, int>> excluded_;  // sorted, (low, high)
     SweepAndPrune broadphase_;
     std::vector<Aabb> boxes_;
+    std::vector<Vec3> centres_;  // world centres of the bounding spheres, per findContacts call
     std::vector<std::pair<int, int>> pairs_;
 };
 

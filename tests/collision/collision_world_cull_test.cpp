@@ -1,0 +1,121 @@
+// CollisionWorld::findContacts skips queries that cannot find anything (bounding boxes, bounding
+// spheres, a box's lowest corner above a plane): its output must be what querying every allowed
+// pair directly gives, on many random scenes.
+
+#include "af/collision/collision_world.h"
+
+#include "af/geometry/shapes.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace af {
+namespace {
+
+constexpr ContentsMask kCorpse = contents::Corpse;
+constexpr ContentsMask kHits = contents::Solid | contents::Corpse;
+
+Mat3 randomRotation(std::mt19937& rng) {
+    std::normal_distribution<Real> g;
+    return Eigen::Quaternion<Real>(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+}
+
+Vec3 randomVector(std::mt19937& rng, Real lo, Real hi) {
+    std::uniform_real_distribution<Real> u(lo, hi);
+    return {u(rng), u(rng), u(rng)};
+}
+
+bool sameContact(const BodyContact& x, const BodyContact& y) {
+    if (x.bodyA != y.bodyA || x.bodyB != y.bodyB || x.staticShape != y.staticShape ||
+        x.manifold.count != y.manifold.count || x.manifold.normal != y.manifold.normal) {
+        return false;
+    }
+    for (int i = 0; i < x.manifold.count; ++i) {
+        const ManifoldPoint &p = x.manifold.points[i], &q = y.manifold.points[i];
+        if (p.point != q.point || p.depth != q.depth || p.id != q.id) {
+            return false;
+        }
+    }
+    return true;
+}
+
+TEST(CollisionWorldCulling, ContactsAreThoseOfEveryAllowedPairQueriedDirectly) {
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<Real> unit(0, 1);
+    int contacts = 0, culledPairs = 0;
+    for (int scene = 0; scene < 300; ++scene) {
+        CollisionWorld world;
+        std::vector<Polytope> shapes;
+        constexpr int kBodies = 12;
+        for (int i = 0; i < kBodies; ++i) {
+            // Boxes off their body frame's origin, and one shape that is not a box.
+            const Polytope shape = i == kBodies - 1 ? makeOctahedron(Vec3(-1, -1, -1), Vec3(1, 1, 1))
+                                                    : transformed(makeBox(-randomVector(rng, 0.1, 1),
+                                                                          randomVector(rng, 0.1, 1)),
+                                                                  randomRotation(rng), randomVector(rng, -0.3, 0.3));
+            shapes.push_back(shape);
+            world.addBody(shape, {i % 2, true, kCorpse, kHits, true});
+        }
+        world.excludePair(0, 1);
+        const int floor = world.addPlane(Plane{Vec3(0.1, 0, 1).normalized(), 0.2});
+        const int brush = world.addStatic(makeBox(Vec3(2, -4, -1), Vec3(4, 4, 0.5)));
+
+        std::vector<RigidPose> poses;
+        std::vector<Vec3> moves;
+        std::vector<Real> reach;
+        std::vector<std::uint8_t> awake;
+        for (int i = 0; i < kBodies; ++i) {
+            poses.push_back({randomVector(rng, -3, 3) + Vec3(0, 0, 2), randomRotation(rng)});
+            moves.push_back(randomVector(rng, -0.3, 0.3));
+            reach.push_back(0.2 * unit(rng));
+            awake.push_back(unit(rng) < 0.8);
+        }
+        const Real margin = 0.1;
+        std::vector<BodyContact> found;
+        world.findContacts(poses, moves, reach, margin, awake, found);
+
+        std::vector<BodyContact> expected;
+        BodyContact c;
+        for (int a = 0; a < kBodies; ++a) {
+            for (int b = a + 1; b < kBodies; ++b) {
+                if ((!awake[a] && !awake[b]) || !world.mayCollide(a, b)) {
+                    continue;
+                }
+                const Real pairMargin = margin + reach[a] + reach[b] + (moves[a] - moves[b]).norm();
+                c = {a, b, -1, collide(shapes[a], poses[a], shapes[b], poses[b], pairMargin)};
+                if (!c.manifold.empty()) {
+                    expected.push_back(c);
+                }
+            }
+        }
+        for (int a = 0; a < kBodies; ++a) {
+            if (!awake[a]) {
+                continue;
+            }
+            const Real staticMargin = margin + reach[a] + moves[a].norm();
+            c = {a, kStaticWorld, floor,
+                 collideWithPlane(shapes[a], poses[a], Plane{Vec3(0.1, 0, 1).normalized(), 0.2}, staticMargin)};
+            if (!c.manifold.empty()) {
+                expected.push_back(c);
+            }
+            c = {a, kStaticWorld, brush,
+                 collide(shapes[a], poses[a], makeBox(Vec3(2, -4, -1), Vec3(4, 4, 0.5)), RigidPose{}, staticMargin)};
+            if (!c.manifold.empty()) {
+                expected.push_back(c);
+            }
+        }
+        ASSERT_EQ(found.size(), expected.size()) << "scene " << scene;
+        for (size_t k = 0; k < found.size(); ++k) {
+            EXPECT_TRUE(sameContact(found[k], expected[k])) << "scene " << scene << " contact " << k;
+        }
+        contacts += int(found.size());
+        culledPairs += kBodies * (kBodies - 1) / 2 - int(found.size());
+    }
+    EXPECT_GT(contacts, 1000);  // the scenes are crowded enough to test something
+    EXPECT_GT(culledPairs, 1000);
+}
+
+}  // namespace
+}  // namespace af
