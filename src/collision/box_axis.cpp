@@ -24,12 +24,25 @@ int edgeIndex(const BoxFeatures& box, int axis, Real alongNext, Real alongAfter)
 std::optional<SeparatingAxis> findBestBoxAxis(const PlacedShape& a, const PlacedShape& b, Real margin) {
     const BoxFeatures& boxA = a.features->box;
     const BoxFeatures& boxB = b.features->box;
-    const Mat3 axesA = a.rotation * boxA.axes;  // working frame, columns u_i
+    // A box in its own body frame, as collide() places A, has the working frame's axes: then the
+    // products with A's axes are copies, and are skipped.
+    const bool aIsFrame = boxA.aligned && a.rotation == Mat3::Identity();
     const Mat3 axesB = b.rotation * boxB.axes;  // working frame, columns v_j
-    const Vec3 between = (b.rotation * boxB.centre + b.translation) - (a.rotation * boxA.centre + a.translation);
-    const Mat3 c = axesA.transpose() * axesB;  // c(i, j) = u_i · v_j
+    const Vec3 centreB = b.rotation * boxB.centre + b.translation;
+    Mat3 axesA, c;  // A's axes in the working frame, columns u_i; c(i, j) = u_i · v_j
+    Vec3 between, dA;  // B's centre from A's, in the working frame and along A's axes
+    if (aIsFrame) {
+        axesA.setIdentity();
+        c = axesB;
+        between = centreB - (boxA.centre + a.translation);
+        dA = between;
+    } else {
+        axesA = a.rotation * boxA.axes;
+        c = axesA.transpose() * axesB;
+        between = centreB - (a.rotation * boxA.centre + a.translation);
+        dA = axesA.transpose() * between;
+    }
     const Mat3 absC = c.cwiseAbs();
-    const Vec3 dA = axesA.transpose() * between;  // B's centre from A's, along A's axes
     const Vec3 dB = axesB.transpose() * between;  // the same along B's axes
     const Vec3 radiusB = absC * boxB.half;              // B's half width along each u_i
     const Vec3 radiusA = absC.transpose() * boxA.half;  // A's half width along each v_j

@@ -125,6 +125,31 @@ void describeBox(const Polytope& p, ShapeFeatures& s) {
         std::abs(box.axes.col(1).dot(box.axes.col(2))) > kBoxCosine) {
         return;
     }
+    // A box whose faces are square to the frame's axes takes them as its own, in their order, so
+    // that queries can skip products with them (BoxFeatures::aligned).
+    std::array<int, 3> coordinate{};
+    bool squareToFrame = true;
+    for (int k = 0; k < 3; ++k) {
+        box.axes.col(k).cwiseAbs().maxCoeff(&coordinate[k]);
+        squareToFrame = squareToFrame && std::abs(box.axes(coordinate[k], k)) == 1;
+    }
+    if (squareToFrame && coordinate[0] != coordinate[1] && coordinate[0] != coordinate[2] &&
+        coordinate[1] != coordinate[2]) {
+        std::array<int, 3> newPlus{}, newMinus{};
+        for (int k = 0; k < 3; ++k) {
+            const bool flipped = box.axes(coordinate[k], k) < 0;
+            newPlus[coordinate[k]] = flipped ? minus[k] : plus[k];
+            newMinus[coordinate[k]] = flipped ? plus[k] : minus[k];
+        }
+        plus = newPlus;
+        minus = newMinus;
+        box.axes.setIdentity();
+        for (int i = 0; i < 3; ++i) {
+            box.faceAxis[plus[i]] = box.faceAxis[minus[i]] = i;
+            box.faceSign[plus[i]] = 1;
+            box.faceSign[minus[i]] = -1;
+        }
+    }
     if (box.axes.col(0).cross(box.axes.col(1)).dot(box.axes.col(2)) < 0) {
         box.axes.col(2) = -box.axes.col(2);
         std::swap(plus[2], minus[2]);
@@ -165,6 +190,7 @@ void describeBox(const Polytope& p, ShapeFeatures& s) {
     for (int g = 0; g < 3; ++g) {
         (box.axes.transpose() * s.groups[g].direction).cwiseAbs().maxCoeff(&box.groupAxis[g]);
     }
+    box.aligned = box.axes == Mat3::Identity();
     box.valid = box.groupAxis[0] != box.groupAxis[1] && box.groupAxis[0] != box.groupAxis[2] &&
                 box.groupAxis[1] != box.groupAxis[2];
 }

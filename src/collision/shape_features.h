@@ -48,6 +48,7 @@ struct BoxFeatures {
     Vec3 centre = Vec3::Zero();
     Mat3 axes = Mat3::Identity();    // columns: unit, right-handed, each the normal of a face
     Vec3 half = Vec3::Zero();        // half extent along each axis
+    bool aligned = false;            // axes are exactly the frame's (a box made around its centre)
     std::array<int, 6> faceAxis{};   // per face: the axis it is square to
     std::array<Real, 6> faceSign{};  // per face: +1 when its normal is the axis, −1 when opposite
     std::array<int, 3> groupAxis{};  // per edge group (ShapeFeatures::groups): the axis it runs along

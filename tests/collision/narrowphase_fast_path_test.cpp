@@ -56,6 +56,8 @@ ShapeFeatures withoutBox(ShapeFeatures f) {
 TEST(BoxFeatures, BoxesAreRecognisedWhereverTheirFrameIsAndOtherShapesAreNot) {
     std::mt19937 rng(7);
     EXPECT_TRUE(featuresOf(box(Vec3(1, 2, 3))).box.valid);
+    EXPECT_TRUE(featuresOf(box(Vec3(1, 2, 3))).box.aligned);
+    EXPECT_TRUE(featuresOf(makeBox(Vec3(0, 1, 2), Vec3(3, 3, 3))).box.aligned);
     for (int k = 0; k < 50; ++k) {
         const Polytope p = offsetBox(rng);
         const ShapeFeatures f = featuresOf(p);
@@ -85,8 +87,11 @@ struct BoxPair {
     RigidPose poseA, poseB;
 };
 
+// Half of them made around the origin (A's axes are then the working frame's), half not.
 BoxPair randomBoxPair(std::mt19937& rng) {
-    BoxPair p{offsetBox(rng), offsetBox(rng), pose(randomVector(rng, -50, 50), randomRotation(rng)), {}};
+    const bool aligned = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
+    BoxPair p{aligned ? box(randomVector(rng, 0.2, 3)) : offsetBox(rng), offsetBox(rng),
+              pose(randomVector(rng, -50, 50), randomRotation(rng)), {}};
     p.poseB = pose(p.poseA.position + randomVector(rng, -3.5, 3.5), randomRotation(rng));
     return p;
 }
