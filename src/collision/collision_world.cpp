@@ -21,7 +21,8 @@ Aabb worldBounds(const ConvexShape& shape, const RigidPose& pose, Real margin) {
         return boundsOf(shape.polytope(), pose, margin);
     }
     const Vec3 centre = pose.apply(box.centre);
-    const Vec3 extent = (pose.rotation * box.axes).cwiseAbs() * box.half + Vec3::Constant(margin);
+    const Mat3 axes = box.aligned ? pose.rotation : Mat3(pose.rotation * box.axes);
+    const Vec3 extent = axes.cwiseAbs() * box.half + Vec3::Constant(margin);
     return {centre - extent, centre + extent};
 }
 
@@ -35,7 +36,8 @@ Real heightAbove(const ConvexShape& shape, const RigidPose& pose, const Vec3& sp
         return plane.normal.dot(sphereCentre) - radius - plane.offset;
     }
     const Vec3 centre = pose.apply(box.centre);
-    const Vec3 along = (pose.rotation * box.axes).transpose() * plane.normal;
+    const Vec3 along = box.aligned ? Vec3(pose.rotation.transpose() * plane.normal)
+                                   : Vec3((pose.rotation * box.axes).transpose() * plane.normal);
     const Real rounding = 1e-12 * (1 + std::abs(plane.offset) + centre.cwiseAbs().sum() + box.half.sum());
     return plane.normal.dot(centre) - along.cwiseAbs().dot(box.half) - plane.offset - rounding;
 }
