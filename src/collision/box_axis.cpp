@@ -76,7 +76,9 @@ std::optional<SeparatingAxis> findBestBoxAxis(const PlacedShape& a, const Placed
 
     // Edge pairs: L = u_i × v_j. Along A's axes L = (…, −c(i2, j), c(i1, j)) at (i1, i2) = the
     // axes after i; along B's, L · v_j1 = c(i, j2) and L · v_j2 = −c(i, j1).
-    SeparatingAxis edges;
+    // The best pair is built into a SeparatingAxis once, at the end.
+    int bestI = -1, bestJ = -1;
+    Real sepEdges = kNone, bestSign = 1, bestLen = 1;
     for (int ga = 0; ga < 3; ++ga) {
         const int i = boxA.groupAxis[ga], i1 = (i + 1) % 3, i2 = (i + 2) % 3;
         for (int gb = 0; gb < 3; ++gb) {
@@ -94,14 +96,26 @@ std::optional<SeparatingAxis> findBestBoxAxis(const PlacedShape& a, const Placed
             if (sep > margin) {
                 return std::nullopt;
             }
-            if (sep > edges.separation) {
-                // s = sign·L points out of A towards B: A's support edge along s, B's along −s.
-                const Real sign = centres >= 0 ? 1 : -1;
-                const Vec3 s = (sign / len) * axesA.col(i).cross(axesB.col(j));
-                edges = {AxisKind::edges, -s, sep, edgeIndex(boxA, i, sign * lA1, sign * lA2),
-                         edgeIndex(boxB, j, -sign * lB1, -sign * lB2)};
+            if (sep > sepEdges) {
+                sepEdges = sep;
+                bestI = i;
+                bestJ = j;
+                bestSign = centres >= 0 ? 1 : -1;
+                bestLen = len;
             }
         }
+    }
+
+    SeparatingAxis edges;
+    if (bestI >= 0) {
+        // s = sign·L points out of A towards B: A's support edge along s, B's along −s.
+        const int i = bestI, j = bestJ;
+        const Real sign = bestSign;
+        const Real lA1 = -c((i + 2) % 3, j), lA2 = c((i + 1) % 3, j);
+        const Real lB1 = c(i, (j + 2) % 3), lB2 = -c(i, (j + 1) % 3);
+        const Vec3 s = (sign / bestLen) * axesA.col(i).cross(axesB.col(j));
+        edges = {AxisKind::edges, -s, sepEdges, edgeIndex(boxA, i, sign * lA1, sign * lA2),
+                 edgeIndex(boxB, j, -sign * lB1, -sign * lB2)};
     }
 
     SeparatingAxis faceA, faceB;
