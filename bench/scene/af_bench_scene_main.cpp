@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
 
     const Clock::time_point start = Clock::now();
     bool partial = false;
-    int treeFallbacks = 0, projectionPasses = 0, shakeRefusals = 0;
+    int sparseFallbacks = 0, treeFallbacks = 0, projectionPasses = 0, shakeRefusals = 0;
     for (int s = 0; s < steps; ++s) {
         if (maxSeconds > 0 && seconds(Clock::now() - start) > maxSeconds) {
             partial = true;
@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
         const Clock::time_point t0 = Clock::now();
         world.step();
         const Clock::time_point t1 = Clock::now();
+        sparseFallbacks += world.lastStep().sparseFallbacks;
         treeFallbacks += world.lastStep().treeFallbacks;
         projectionPasses += world.lastStep().projectionPasses;
         shakeRefusals += world.lastStep().shakeRefusals;
@@ -67,6 +68,7 @@ int main(int argc, char** argv) {
     }
     const std::string extra = "\"twist_limited\": true, \"solver_failures\": " +
                               std::to_string(world.solverFailures()) +
+                              ", \"sparse_fallbacks\": " + std::to_string(sparseFallbacks) +
                               ", \"tree_fallbacks\": " + std::to_string(treeFallbacks) +
                               ", \"projection_passes\": " + std::to_string(projectionPasses) +
                               ", \"shake_refusals\": " + std::to_string(shakeRefusals) +

@@ -15,6 +15,7 @@
 #include "row_pgs.h"
 #include "row_system.h"
 #include "shake.h"
+#include "sparse_lcp.h"
 #include "warm_start.h"
 
 #include <cstdint>
@@ -65,6 +66,8 @@ private:
     void allowApproach(Real dt);
     LcpStatus solveVelocities(IslandContext& context);
     bool solveWithTree(IslandContext& context);
+    bool solveSparse(const WarmStartCache& guess, IslandContext& context);
+    void statesFromImpulses(const IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
     void closeDrift(Real dt, IslandContext& context);
     void projectPositions(IslandContext& context);
@@ -102,6 +105,7 @@ private:
     LcpExactSolver exact_;
     LcpExactSolver exactPosition_;
     TreeSolver tree_;
+    SparseLcpSolver sparse_;
     LcpPgsSolver pgs_;
     RowPgs rowPgs_;
     ShakeCorrection shake_;

@@ -3,6 +3,7 @@
 #include "island.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace af {
 
@@ -101,9 +102,12 @@ LcpStatus Island::solveVelocities(IslandContext& context) {
     return r.status;
 }
 
-// The tree solver's answer is the dense one; its impulses go where the dense solve's would, so
-// that applying them and SHAKE work alike. False when it cannot serve these rows.
+// The sparse path first: from the guess of the previous step's states it usually needs one
+// factorisation. Then the tree solver, whose answer is the dense one; its impulses go where the
+// dense solve's would, so that applying them and SHAKE work alike. False when neither can serve
+// these rows.
 bool Island::solveWithTree(IslandContext& context) {
+    if (solveSparse(context.velocityWarmStart, context)) return true;
     if (!treeReady_) {
         tree_.setStructure(bodies_, joints_);
         treeReady_ = true;
@@ -113,9 +117,47 @@ bool Island::solveWithTree(IslandContext& context) {
     if (r.status != LcpStatus::Solved) return false;
     const std::span<const Real> lambda = tree_.impulses();
     std::copy(lambda.begin(), lambda.end(), system_.solution().begin());
+    statesFromImpulses(context);
     context.report.pivots += r.pivots;
     context.report.residual = std::max(context.report.residual, r.residual);
     return true;
+}
+
+// The sparse path (sparse_lcp.h) on the problem in system_, from the states and impulses there
+// (recalled from `guess`), with the exact solver's tolerance. When it gives up, the guess is put
+// back for the solver that takes over, and the give-up is counted.
+bool Island::solveSparse(const WarmStartCache& guess, IslandContext& context) {
+    std::span<Real> x = system_.solution();
+    std::span<LcpRowState> states = system_.states();
+    const SparseLcpResult r =
+        sparse_.solve(rows_.all(), system_.responses(), system_.problem(), bodies_, x, states, context.settings.exact.tolerance);
+    if (r.status == LcpStatus::Solved) {
+        context.report.residual = std::max(context.report.residual, r.residual);
+        return true;
+    }
+    ++context.report.sparseFallbacks;
+    guess.recall(rowKeys_, states, x);
+    return false;
+}
+
+// The row states of the impulses in system_ (the tree solver keeps its own), so that the next
+// solve's guess, which the sparse path starts from, is this answer: a row at a bound (a friction
+// row's box from its normal's impulse) is there, any other is free.
+void Island::statesFromImpulses(const IslandContext& context) {
+    const std::span<const Real> x = system_.solution();
+    const std::span<LcpRowState> states = system_.states();
+    const Real tolerance = context.settings.exact.tolerance;
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+        const ConstraintRow& r = rows_[i];
+        Real lo = r.lo, hi = r.hi;
+        if (r.frictionSource >= 0) {
+            hi = r.frictionCoefficient * std::abs(x[static_cast<std::size_t>(r.frictionSource)]);
+            lo = -hi;
+        }
+        const bool atLower = std::isfinite(lo) && x[i] <= lo + tolerance * std::max(Real(1), std::abs(lo));
+        const bool atUpper = std::isfinite(hi) && x[i] >= hi - tolerance * std::max(Real(1), std::abs(hi));
+        states[i] = atLower ? LcpRowState::AtLower : atUpper ? LcpRowState::AtUpper : LcpRowState::Free;
+    }
 }
 
 // Never apply the impulses of a failed pivoting solve: they may be far from any solution. The
@@ -173,11 +215,17 @@ LcpStatus Island::solvePositions() {
     return status;
 }
 
-// The tree solver's position answer, as the dense one's would be (see solveWithTree); its rows
-// are factorised without friction rows, which the position problem holds at 0. False when it
+// The sparse path's position answer, else the tree solver's, as the dense one's would be (see
+// solveWithTree); the tree factorises the rows without friction rows, which the position problem holds at 0. False when it
 // cannot serve these rows (the fallback is counted) or is not the chosen solver.
 bool Island::solvePositionsWithTree(IslandContext& context) {
     if (context.settings.solver != SolverKind::Tree) return false;
+    system_.setPositionRhs(rows_);
+    positionCache_.recall(rowKeys_, system_.states(), system_.solution());
+    if (solveSparse(positionCache_, context)) {
+        positionCache_.remember(rowKeys_, system_.states(), system_.solution());
+        return true;
+    }
     if (!treeReady_) {
         tree_.setStructure(bodies_, joints_);
         treeReady_ = true;
@@ -190,6 +238,8 @@ bool Island::solvePositionsWithTree(IslandContext& context) {
     }
     const std::span<const Real> lambda = tree_.impulses();
     std::copy(lambda.begin(), lambda.end(), system_.solution().begin());
+    statesFromImpulses(context);
+    positionCache_.remember(rowKeys_, system_.states(), system_.solution());
     return true;
 }
 

@@ -59,6 +59,7 @@ public:
     void applyDisplacements(const ConstraintRows& rows, std::span<RigidBody> bodies);
 
     const RowResponse& response(std::size_t row) const { return response_[row]; }
+    std::span<const RowResponse> responses() const { return response_; }
 
     // Each body's RigidBody::inverseInertiaWorld at its current pose, computed once per body, for
     // writing or reading many rows at one pose. Valid until the next call of this or of build

@@ -96,6 +96,7 @@ struct StepReport {
     Real residual = 0;             // LCP residual of the last velocity solve
     int failures = 0;              // solves of this step that did not report Solved
     int shakeRefusals = 0;         // substeps whose SHAKE correction was refused (world.cpp)
+    int sparseFallbacks = 0;       // Tree solver: solves its sparse path gave up (tree factorisation used)
     int treeFallbacks = 0;         // Tree solver: substeps whose rows it could not serve (dense used)
     int largeIslands = 0;          // islands of the last substep solved by PGS for exceeding exactRowLimit
     int projectionPasses = 0;      // position projection passes of the last substep (all islands)
