@@ -261,6 +261,72 @@ bool SparseRowFactor::eliminate(int k) {
     return true;
 }
 
+int SparseRowFactor::variableOf(int row) const {
+    const std::size_t r = static_cast<std::size_t>(row);
+    return local_[r] < 0 ? -1 : varStart_[static_cast<std::size_t>(groupOfRow_[r])] + local_[r];
+}
+
+void SparseRowFactor::column(int row, std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                             std::span<Real> y, std::span<std::uint8_t> active) const {
+    std::fill(y.begin(), y.end(), 0);
+    std::fill(active.begin(), active.end(), 0);
+    const ConstraintRow& r = rows[static_cast<std::size_t>(row)];
+    const RowResponse& m = responses[static_cast<std::size_t>(row)];
+    for (int body : {firstBody(rowKey_[static_cast<std::size_t>(row)]), secondBody(rowKey_[static_cast<std::size_t>(row)])}) {
+        if (body == kNoBody) continue;
+        const Side mr = responseOn(r, m, body);
+        const std::size_t b = static_cast<std::size_t>(body);
+        for (int p = bodyStart_[b]; p < bodyStart_[b + 1]; ++p) {
+            const int s = bodyRows_[static_cast<std::size_t>(p)];
+            const int v = variableOf(s);
+            if (v < 0) continue;
+            const Side js = jacobianOn(rows[static_cast<std::size_t>(s)], body);
+            y[static_cast<std::size_t>(v)] += js.linear.dot(mr.linear) + js.angular.dot(mr.angular);
+            active[static_cast<std::size_t>(groupOfRow_[static_cast<std::size_t>(s)])] = 1;
+        }
+    }
+}
+
+void SparseRowFactor::unit(int row, std::span<Real> y, std::span<std::uint8_t> active) const {
+    std::fill(y.begin(), y.end(), 0);
+    std::fill(active.begin(), active.end(), 0);
+    y[static_cast<std::size_t>(variableOf(row))] = 1;
+    active[static_cast<std::size_t>(groupOfRow_[static_cast<std::size_t>(row)])] = 1;
+}
+
+void SparseRowFactor::forward(std::span<Real> y, std::span<std::uint8_t> active) const {
+    for (std::size_t g = 0; g < groupKeys_.size(); ++g) {
+        if (!active[g] || size_[g] == 0) continue;
+        const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
+        const int height = panelHeight_[g], n = size_[g];
+        Real* yg = &y[static_cast<std::size_t>(varStart_[g])];
+        for (int j = 0; j < n; ++j)
+            for (int i = j + 1; i < n; ++i) yg[i] -= panel[j * height + i] * yg[j];
+        for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
+            const std::size_t f = static_cast<std::size_t>(front_[static_cast<std::size_t>(s)]);
+            Real* yf = &y[static_cast<std::size_t>(varStart_[f])];
+            const int o = blockOffset_[static_cast<std::size_t>(s)];
+            for (int j = 0; j < n; ++j)
+                for (int r = 0; r < size_[f]; ++r) yf[r] -= panel[j * height + o + r] * yg[j];
+            active[f] = 1;
+        }
+    }
+}
+
+Real SparseRowFactor::scaledDot(std::span<const Real> u, std::span<const std::uint8_t> uActive, std::span<const Real> v,
+                                std::span<const std::uint8_t> vActive) const {
+    Real sum = 0;
+    for (std::size_t g = 0; g < groupKeys_.size(); ++g) {
+        if (!uActive[g] || !vActive[g]) continue;
+        const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
+        for (int j = 0; j < size_[g]; ++j) {
+            const std::size_t at = static_cast<std::size_t>(varStart_[g] + j);
+            sum += u[at] * v[at] / panel[j * (panelHeight_[g] + 1)];
+        }
+    }
+    return sum;
+}
+
 void SparseRowFactor::solve(std::span<Real> x) const {
     const std::size_t groups = groupKeys_.size();
     work_.resize(static_cast<std::size_t>(varStart_[groups]));

@@ -41,6 +41,25 @@ public:
     // indices on entry and y there on return; other entries are left alone.
     void solve(std::span<Real> x) const;
 
+    // Sparse pieces of A_FF⁻¹ = L⁻ᵀ D⁻¹ L⁻¹ for a few entries of it (sliding friction, see
+    // sparse_lcp.cpp), in the factor's own numbering of the free rows ("variables"). A vector there
+    // comes with a flag per group saying where it may be non-zero; the solves touch only those
+    // groups and the groups they pass into, the path to the root of the elimination tree.
+    int variables() const { return varStart_.empty() ? 0 : varStart_.back(); }
+    int groups() const { return static_cast<int>(groupKeys_.size()); }
+    // Row i's variable, or −1 if it is not free.
+    int variableOf(int row) const;
+    // The column A_F,row of a row (free or not) into y (zeroed first), flagging its groups.
+    void column(int row, std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                std::span<Real> y, std::span<std::uint8_t> active) const;
+    // Unit vector of a free row's variable into y (zeroed first), flagging its group.
+    void unit(int row, std::span<Real> y, std::span<std::uint8_t> active) const;
+    // y ← L⁻¹ y over the flagged groups, flagging those it reaches.
+    void forward(std::span<Real> y, std::span<std::uint8_t> active) const;
+    // uᵀ D⁻¹ v over the groups flagged in both.
+    Real scaledDot(std::span<const Real> u, std::span<const std::uint8_t> uActive, std::span<const Real> v,
+                   std::span<const std::uint8_t> vActive) const;
+
 private:
     void order();
     int frontSlot(int column, int group) const;

@@ -219,45 +219,44 @@ bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::spa
     const std::size_t k = slidingRows_.size();
     if (k == 0) return true;
 
-    // g_j for each sliding row j, stored row after row (n entries each, free rows filled).
-    response_.resize(k * n);
-    for (std::size_t i = 0; i < n; ++i) use_[i] = 0;
-    unit_.assign(n, 0);
+    // G_ij = g_j at row i's normal = −e_nᵀ A_FF⁻¹ a_j = −(L⁻¹e_n)ᵀ D⁻¹ (L⁻¹a_j), a_j the sliding
+    // row's column of A: both forward solves touch only the elimination tree's paths from the
+    // rows' groups to its root.
+    const std::size_t vars = static_cast<std::size_t>(factor_.variables());
+    const std::size_t groups = static_cast<std::size_t>(factor_.groups());
+    paths_.resize(2 * k * vars);
+    reached_.resize(2 * k * groups);
+    auto path = [&](std::size_t p) { return std::span<Real>(&paths_[p * vars], vars); };
+    auto reached = [&](std::size_t p) { return std::span<std::uint8_t>(&reached_[p * groups], groups); };
     for (std::size_t j = 0; j < k; ++j) {
-        const std::size_t row = static_cast<std::size_t>(slidingRows_[j]);
-        unit_[row] = 1;
-        use_[row] = 1;
-        std::span<Real> g(&response_[j * n], n);
-        solveFree(rows, responses, zero_(n), unit_, g);
-        unit_[row] = 0;
-        use_[row] = 0;
+        const int row = slidingRows_[j];
+        factor_.column(row, rows, responses, path(j), reached(j));
+        factor_.forward(path(j), reached(j));
+        factor_.unit(source(problem, static_cast<std::size_t>(row)), path(k + j), reached(k + j));
+        factor_.forward(path(k + j), reached(k + j));
     }
-    // (I − D G) β = D x0_n with D = diag(σ μ), G_ij = g_j at row i's normal.
+    // (I − D G) β = D x0_n with D = diag(σ μ).
     small_.assign(k * k, 0);
     beta_.resize(k);
     for (std::size_t i = 0; i < k; ++i) {
         const std::size_t row = static_cast<std::size_t>(slidingRows_[i]);
-        const std::size_t normal = static_cast<std::size_t>(source(problem, row));
         const Real d = (states[row] == LcpRowState::AtLower ? -1 : 1) * problem.mu[row];
-        for (std::size_t j = 0; j < k; ++j) small_[i * k + j] = (i == j ? 1 : 0) - d * response_[j * n + normal];
-        beta_[i] = d * x[normal];
+        for (std::size_t j = 0; j < k; ++j)
+            small_[i * k + j] = (i == j ? 1 : 0) + d * factor_.scaledDot(path(k + i), reached(k + i), path(j), reached(j));
+        beta_[i] = d * x[static_cast<std::size_t>(source(problem, row))];
     }
     if (!solveSmall(k)) {
         result.status = LcpStatus::Unsatisfiable;
         return false;
     }
-    for (std::size_t i = 0; i < n; ++i) {
-        if (!free_[i]) continue;
-        for (std::size_t j = 0; j < k; ++j) x[i] += beta_[j] * response_[j * n + i];
+    // The free rows again, the sliding rows' impulses now among the known ones.
+    for (std::size_t j = 0; j < k; ++j) {
+        x[static_cast<std::size_t>(slidingRows_[j])] = beta_[j];
+        use_[static_cast<std::size_t>(slidingRows_[j])] = 1;
     }
-    for (std::size_t j = 0; j < k; ++j) x[static_cast<std::size_t>(slidingRows_[j])] = beta_[j];
+    solveFree(rows, responses, problem.b, x, x);
     ++result.couplingSolves;
     return true;
-}
-
-std::span<const Real> SparseLcpSolver::zero_(std::size_t n) {
-    zeros_.assign(n, 0);
-    return zeros_;
 }
 
 // Gaussian elimination with partial pivoting of small_ (k×k) against beta_, in place.

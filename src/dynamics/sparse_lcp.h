@@ -46,7 +46,6 @@ private:
     void solveFree(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                    std::span<const Real> b, std::span<const Real> x, std::span<Real> out);
     bool solveSmall(std::size_t k);
-    std::span<const Real> zero_(std::size_t n);
     int source(const LcpProblem& problem, std::size_t i) const;
     bool sliding(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const;
     void bounds(const LcpProblem& problem, std::span<const Real> x);
@@ -55,8 +54,8 @@ private:
     Real along(const ConstraintRow& row) const;
 
     SparseRowFactor factor_;
-    std::vector<Real> lo_, hi_, w_, rhs_, unit_, zeros_, response_, small_, beta_;
-    std::vector<std::uint8_t> free_, use_;
+    std::vector<Real> lo_, hi_, w_, rhs_, paths_, small_, beta_;
+    std::vector<std::uint8_t> free_, use_, reached_;
     std::vector<int> slidingRows_;
     std::vector<LcpRowState> next_;
     std::vector<Vec3> linear_, angular_;

@@ -4,23 +4,36 @@
 
 namespace af {
 
+// The same keys in the same order as last time (a resting figure): the index by key still holds.
 void WarmStartCache::remember(std::span<const std::uint64_t> keys, std::span<const LcpRowState> states,
                               std::span<const Real> impulses) {
-    entries_.clear();
-    for (std::size_t i = 0; i < keys.size(); ++i) entries_.push_back({keys[i], states[i], impulses[i]});
-    std::sort(entries_.begin(), entries_.end());
+    bool sameKeys = keys.size() == entries_.size();
+    for (std::size_t i = 0; i < keys.size() && sameKeys; ++i) sameKeys = entries_[i].key == keys[i];
+    entries_.resize(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) entries_[i] = {keys[i], states[i], impulses[i]};
+    if (!sameKeys || byKey_.size() != entries_.size()) sort();
 }
 
-void WarmStartCache::sort() { std::sort(entries_.begin(), entries_.end()); }
+void WarmStartCache::sort() {
+    byKey_.resize(entries_.size());
+    for (std::size_t i = 0; i < entries_.size(); ++i) byKey_[i] = {entries_[i].key, i};
+    std::sort(byKey_.begin(), byKey_.end());
+}
 
 int WarmStartCache::recall(std::span<const std::uint64_t> keys, std::span<LcpRowState> states,
                            std::span<Real> impulses) const {
     int found = 0;
+    std::size_t next = 0;  // the entry after the last one found
     for (std::size_t i = 0; i < keys.size(); ++i) {
-        const auto at = std::lower_bound(entries_.begin(), entries_.end(), Entry{keys[i], LcpRowState::Unknown, 0});
-        if (at != entries_.end() && at->key == keys[i]) {
-            states[i] = at->state;
-            impulses[i] = at->impulse;
+        std::size_t at = next;
+        if (at >= entries_.size() || entries_[at].key != keys[i]) {
+            const auto k = std::lower_bound(byKey_.begin(), byKey_.end(), std::make_pair(keys[i], std::size_t(0)));
+            at = k != byKey_.end() && k->first == keys[i] ? k->second : entries_.size();
+        }
+        if (at < entries_.size()) {
+            states[i] = entries_[at].state;
+            impulses[i] = entries_[at].impulse;
+            next = at + 1;
             ++found;
         } else {
             states[i] = LcpRowState::Unknown;

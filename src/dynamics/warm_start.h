@@ -4,6 +4,10 @@
 // starts each row from the state and impulse the row with the same key ended with, whatever rows
 // came or went in between (limits engaging, contact points appearing). Rows never seen start
 // Unknown with no impulse.
+//
+// Rows usually come in the same order step after step (a resting figure's), so entries are kept
+// in the order they were remembered and a recall first tries the entry after the last one found;
+// only rows out of that order are looked up by key.
 
 #include "af/dynamics/lcp.h"
 
@@ -19,7 +23,10 @@ public:
                   std::span<const Real> impulses);
     // Fills the guesses of `keys`; returns how many rows were found.
     int recall(std::span<const std::uint64_t> keys, std::span<LcpRowState> states, std::span<Real> impulses) const;
-    void clear() { entries_.clear(); }
+    void clear() {
+        entries_.clear();
+        byKey_.clear();
+    }
     // Builds the cache from others with disjoint keys (the islands of a step): clear, add each,
     // then sort.
     void add(const WarmStartCache& other) { entries_.insert(entries_.end(), other.entries_.begin(), other.entries_.end()); }
@@ -30,9 +37,9 @@ private:
         std::uint64_t key;
         LcpRowState state;
         Real impulse;
-        bool operator<(const Entry& o) const { return key < o.key; }
     };
-    std::vector<Entry> entries_;  // sorted by key
+    std::vector<Entry> entries_;                               // in the order remembered
+    std::vector<std::pair<std::uint64_t, std::size_t>> byKey_;  // (key, index into entries_), sorted
 };
 
 }  // namespace af
