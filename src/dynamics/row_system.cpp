@@ -8,6 +8,27 @@ namespace {
 
 Real dot6(const Vec3& l0, const Vec3& a0, const Vec3& l1, const Vec3& a1) { return l0.dot(l1) + a0.dot(a1); }
 
+// accumulateResponses with the rows' bodies given by bodiesOf(i) (a pair: A, B).
+template <class BodiesOf>
+void accumulate(std::size_t rows, BodiesOf bodiesOf, std::span<const RowResponse> responses,
+                std::span<const Real> lambda, std::vector<Vec3>& linear, std::vector<Vec3>& angular) {
+    std::fill(linear.begin(), linear.end(), Vec3::Zero());
+    std::fill(angular.begin(), angular.end(), Vec3::Zero());
+    for (std::size_t i = 0; i < rows; ++i) {
+        if (lambda[i] == 0) continue;
+        const auto [a, b] = bodiesOf(i);
+        const RowResponse& m = responses[i];
+        if (a != kWorldBody) {
+            linear[static_cast<std::size_t>(a)] += lambda[i] * m.linearA;
+            angular[static_cast<std::size_t>(a)] += lambda[i] * m.angularA;
+        }
+        if (b != kWorldBody) {
+            linear[static_cast<std::size_t>(b)] += lambda[i] * m.linearB;
+            angular[static_cast<std::size_t>(b)] += lambda[i] * m.angularB;
+        }
+    }
+}
+
 }  // namespace
 
 void RowSystem::build(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
@@ -27,6 +48,7 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
     findex_.resize(n);
     x_.resize(n);
     states_.resize(n);
+    rowBodies_.resize(n);
 
     const std::span<const Mat3> inertia = inverseInertiasWorld(bodies);
     for (std::size_t i = 0; i < n; ++i) {
@@ -48,6 +70,7 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
             m.linearB.setZero();
             m.angularB.setZero();
         }
+        rowBodies_[i] = {r.bodyA, r.bodyB};
         lo_[i] = r.lo;
         hi_[i] = r.hi;
         findex_[i] = r.frictionSource;
@@ -138,21 +161,9 @@ LcpProblem RowSystem::problem() const {
 
 void accumulateResponses(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                          std::span<const Real> lambda, std::vector<Vec3>& linear, std::vector<Vec3>& angular) {
-    std::fill(linear.begin(), linear.end(), Vec3::Zero());
-    std::fill(angular.begin(), angular.end(), Vec3::Zero());
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (lambda[i] == 0) continue;
-        const ConstraintRow& r = rows[i];
-        const RowResponse& m = responses[i];
-        if (r.bodyA != kWorldBody) {
-            linear[static_cast<std::size_t>(r.bodyA)] += lambda[i] * m.linearA;
-            angular[static_cast<std::size_t>(r.bodyA)] += lambda[i] * m.angularA;
-        }
-        if (r.bodyB != kWorldBody) {
-            linear[static_cast<std::size_t>(r.bodyB)] += lambda[i] * m.linearB;
-            angular[static_cast<std::size_t>(r.bodyB)] += lambda[i] * m.angularB;
-        }
-    }
+    accumulate(
+        rows.size(), [&](std::size_t i) { return std::array<int, 2>{rows[i].bodyA, rows[i].bodyB}; }, responses, lambda,
+        linear, angular);
 }
 
 void RowSystem::applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies) {
@@ -170,6 +181,14 @@ void RowSystem::applyDisplacements(const ConstraintRows& rows, std::span<RigidBo
     linearShift_.resize(bodies.size());
     angularShift_.resize(bodies.size());
     accumulateResponses(rows.all(), response_, x_, linearShift_, angularShift_);
+    for (std::size_t k = 0; k < bodies.size(); ++k) displaceBody(bodies[k], linearShift_[k], angularShift_[k]);
+}
+
+void RowSystem::applyDisplacements(std::span<RigidBody> bodies) {
+    linearShift_.resize(bodies.size());
+    angularShift_.resize(bodies.size());
+    accumulate(
+        rowBodies_.size(), [&](std::size_t i) { return rowBodies_[i]; }, response_, x_, linearShift_, angularShift_);
     for (std::size_t k = 0; k < bodies.size(); ++k) displaceBody(bodies[k], linearShift_[k], angularShift_[k]);
 }
 

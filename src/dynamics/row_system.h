@@ -8,6 +8,7 @@
 #include "af/dynamics/lcp.h"
 #include "af/dynamics/rigid_body.h"
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -57,6 +58,10 @@ public:
     void applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies);
     // x += M⁻¹ Jᵀ λ (linear), orientation turned by I⁻¹ Jᵀ λ (angular).
     void applyDisplacements(const ConstraintRows& rows, std::span<RigidBody> bodies);
+    // The same with the rows' bodies as buildResponses saw them, so the caller may rewrite its
+    // rows in between (the projection moves, rewrites them to measure, and moves again) without
+    // keeping a copy of the rows it solved.
+    void applyDisplacements(std::span<RigidBody> bodies);
 
     const RowResponse& response(std::size_t row) const { return response_[row]; }
     std::span<const RowResponse> responses() const { return response_; }
@@ -74,6 +79,7 @@ private:
     std::vector<LcpRowState> states_;
     std::vector<Vec3> linearShift_, angularShift_;
     std::vector<Mat3> inverseInertia_;
+    std::vector<std::array<int, 2>> rowBodies_;  // per row: bodyA, bodyB at buildResponses
 };
 
 }  // namespace af
