@@ -42,21 +42,29 @@ Side responseOn(const ConstraintRow& row, const RowResponse& m, int b) {
 bool SparseRowFactor::analyse(std::span<const ConstraintRow> rows, std::span<const RigidBody> bodies) {
     const int bodyCount = static_cast<int>(bodies.size());
     auto dynamic = [&](int b) { return b != kWorldBody && bodies[static_cast<std::size_t>(b)].inverseMass > 0 ? b : kNoBody; };
-    rowKey_.resize(rows.size());
+    // The same body pairs in the same order as last time (a resting figure): nothing to redo.
+    bool same = analysed_ && rowKey_.size() == rows.size() && bodyStart_.size() == bodies.size() + 1;
+    std::vector<std::uint64_t>& keys = scratchKeys_;
+    keys.resize(rows.size());
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const ConstraintRow& r = rows[i];
         const bool inRange = r.bodyA >= kWorldBody && r.bodyA < bodyCount && r.bodyB >= kWorldBody && r.bodyB < bodyCount;
         if (!inRange || (r.bodyA == r.bodyB && r.bodyA != kWorldBody)) {
             groupKeys_.clear();
+            analysed_ = false;
             return false;
         }
-        rowKey_[i] = pairKey(dynamic(r.bodyA), dynamic(r.bodyB));
+        keys[i] = pairKey(dynamic(r.bodyA), dynamic(r.bodyB));
+        same = same && keys[i] == rowKey_[i];
     }
+    if (same) return true;
+    analysed_ = true;
+    rowKey_.assign(keys.begin(), keys.end());
     std::vector<std::uint64_t>& sorted = scratchKeys_;
     sorted.assign(rowKey_.begin(), rowKey_.end());
     std::sort(sorted.begin(), sorted.end());
     sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
-    if (sorted != sortedKeys_ || groupKeys_.empty() != sorted.empty()) {
+    if (sorted != sortedKeys_ || groupKeys_.size() != sorted.size()) {
         sortedKeys_ = sorted;
         order();
     }
@@ -198,13 +206,17 @@ void SparseRowFactor::assemble(std::span<const ConstraintRow> rows, std::span<co
             const Side jr = jacobianOn(rows[r], body);
             Real* column = &values_[static_cast<std::size_t>(panelStart_[static_cast<std::size_t>(gr)] +
                                                              local_[r] * panelHeight_[static_cast<std::size_t>(gr)])];
+            int lastGroup = gr, lastOffset = 0;  // rows of one group come together
             for (int q = bodyStart_[b]; q < bodyStart_[b + 1]; ++q) {
                 const std::size_t s = static_cast<std::size_t>(bodyRows_[static_cast<std::size_t>(q)]);
                 const int gs = groupOfRow_[s];
                 if (local_[s] < 0 || gs < gr || (gs == gr && local_[s] < local_[r])) continue;
+                if (gs != lastGroup) {
+                    lastGroup = gs;
+                    lastOffset = blockOffset_[static_cast<std::size_t>(frontSlot(gr, gs))];
+                }
                 const Side ms = responseOn(rows[s], responses[s], body);
-                const int at = gs == gr ? local_[s] : blockOffset_[static_cast<std::size_t>(frontSlot(gr, gs))] + local_[s];
-                column[at] += jr.linear.dot(ms.linear) + jr.angular.dot(ms.angular);
+                column[(gs == gr ? 0 : lastOffset) + local_[s]] += jr.linear.dot(ms.linear) + jr.angular.dot(ms.angular);
             }
         }
     }
@@ -239,23 +251,40 @@ bool SparseRowFactor::eliminate(int k) {
         if (!(d > kPivotTolerance * own[j])) return false;
         for (int i = j + 1; i < height; ++i) at(i, j) /= d;
     }
+    // The Schur complement B D Bᵀ of the rows below the diagonal block (B = L there), lower half,
+    // then handed out block by block to the front groups' panels.
+    const int below = height - n;
+    if (below == 0) return true;
+    scaled_.resize(static_cast<std::size_t>(below * n));
+    update_.assign(static_cast<std::size_t>(below * below), 0);
+    for (int t = 0; t < n; ++t) {
+        const Real d = at(t, t);
+        const Real* l = &panel[t * height + n];
+        Real* w = &scaled_[static_cast<std::size_t>(t * below)];
+        for (int i = 0; i < below; ++i) w[i] = l[i] * d;
+        for (int c = 0; c < below; ++c) {
+            const Real f = l[c];
+            if (f == 0) continue;
+            Real* u = &update_[static_cast<std::size_t>(c * below)];
+            for (int r = c; r < below; ++r) u[r] += w[r] * f;
+        }
+    }
     for (int sa = frontStart_[g]; sa < frontStart_[g + 1]; ++sa) {
         const std::size_t ga = static_cast<std::size_t>(front_[static_cast<std::size_t>(sa)]);
-        const int oa = blockOffset_[static_cast<std::size_t>(sa)], na = size_[ga];
+        const int oa = blockOffset_[static_cast<std::size_t>(sa)] - n, na = size_[ga];
         if (na == 0) continue;
         Real* target = &values_[static_cast<std::size_t>(panelStart_[ga])];
         const int targetHeight = panelHeight_[ga];
         for (int sb = sa; sb < frontStart_[g + 1]; ++sb) {
             const std::size_t gb = static_cast<std::size_t>(front_[static_cast<std::size_t>(sb)]);
-            const int ob = blockOffset_[static_cast<std::size_t>(sb)], nb = size_[gb];
+            const int ob = blockOffset_[static_cast<std::size_t>(sb)] - n, nb = size_[gb];
             if (nb == 0) continue;
             const int into = sa == sb ? 0 : blockOffset_[static_cast<std::size_t>(frontSlot(static_cast<int>(ga), static_cast<int>(gb)))];
-            for (int c = 0; c < na; ++c)
-                for (int r = sa == sb ? c : 0; r < nb; ++r) {
-                    Real sum = 0;
-                    for (int t = 0; t < n; ++t) sum += at(ob + r, t) * at(t, t) * at(oa + c, t);
-                    target[c * targetHeight + into + r] -= sum;
-                }
+            for (int c = 0; c < na; ++c) {
+                const Real* u = &update_[static_cast<std::size_t>((oa + c) * below + ob)];
+                Real* out = &target[c * targetHeight + into];
+                for (int r = sa == sb ? c : 0; r < nb; ++r) out[r] -= u[r];
+            }
         }
     }
     return true;
@@ -335,33 +364,48 @@ void SparseRowFactor::solve(std::span<Real> x) const {
             const std::size_t r = static_cast<std::size_t>(groupRows_[static_cast<std::size_t>(k)]);
             if (local_[r] >= 0) work_[static_cast<std::size_t>(varStart_[g] + local_[r])] = x[r];
         }
-    auto panelAt = [&](std::size_t g, int i, int j) { return values_[static_cast<std::size_t>(panelStart_[g] + j * panelHeight_[g] + i)]; };
     for (std::size_t g = 0; g < groups; ++g) {
+        const int n = size_[g], height = panelHeight_[g];
+        if (n == 0) continue;
+        const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
         Real* y = &work_[static_cast<std::size_t>(varStart_[g])];
-        const int n = size_[g];
-        for (int j = 0; j < n; ++j)
-            for (int i = j + 1; i < n; ++i) y[i] -= panelAt(g, i, j) * y[j];
+        for (int j = 0; j < n; ++j) {
+            const Real* l = &panel[j * height];
+            for (int i = j + 1; i < n; ++i) y[i] -= l[i] * y[j];
+        }
         for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
             const std::size_t f = static_cast<std::size_t>(front_[static_cast<std::size_t>(s)]);
             Real* yf = &work_[static_cast<std::size_t>(varStart_[f])];
-            const int o = blockOffset_[static_cast<std::size_t>(s)];
-            for (int j = 0; j < n; ++j)
-                for (int r = 0; r < size_[f]; ++r) yf[r] -= panelAt(g, o + r, j) * y[j];
+            const int o = blockOffset_[static_cast<std::size_t>(s)], nf = size_[f];
+            for (int j = 0; j < n; ++j) {
+                const Real* l = &panel[j * height + o];
+                for (int r = 0; r < nf; ++r) yf[r] -= l[r] * y[j];
+            }
         }
-        for (int j = 0; j < n; ++j) y[j] /= panelAt(g, j, j);
+        for (int j = 0; j < n; ++j) y[j] /= panel[j * (height + 1)];
     }
     for (std::size_t g = groups; g-- > 0;) {
+        const int n = size_[g], height = panelHeight_[g];
+        if (n == 0) continue;
+        const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
         Real* y = &work_[static_cast<std::size_t>(varStart_[g])];
-        const int n = size_[g];
         for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
             const std::size_t f = static_cast<std::size_t>(front_[static_cast<std::size_t>(s)]);
             const Real* yf = &work_[static_cast<std::size_t>(varStart_[f])];
-            const int o = blockOffset_[static_cast<std::size_t>(s)];
-            for (int j = 0; j < n; ++j)
-                for (int r = 0; r < size_[f]; ++r) y[j] -= panelAt(g, o + r, j) * yf[r];
+            const int o = blockOffset_[static_cast<std::size_t>(s)], nf = size_[f];
+            for (int j = 0; j < n; ++j) {
+                const Real* l = &panel[j * height + o];
+                Real sum = 0;
+                for (int r = 0; r < nf; ++r) sum += l[r] * yf[r];
+                y[j] -= sum;
+            }
         }
-        for (int j = n; j-- > 0;)
-            for (int i = j + 1; i < n; ++i) y[j] -= panelAt(g, i, j) * y[i];
+        for (int j = n; j-- > 0;) {
+            const Real* l = &panel[j * height];
+            Real sum = 0;
+            for (int i = j + 1; i < n; ++i) sum += l[i] * y[i];
+            y[j] -= sum;
+        }
     }
     for (std::size_t g = 0; g < groups; ++g)
         for (int k = rowStart_[g]; k < rowStart_[g + 1]; ++k) {

@@ -74,13 +74,15 @@ private:
     std::vector<int> frontStart_, front_;    // later groups coupled to each group, fill included, ascending
     std::vector<int> bodyStart_, bodyRows_;  // rows touching each dynamic body, ascending
     std::vector<int> fill_, scratchInts_;    // scratch
+    bool analysed_ = false;                  // rowKey_ and what follows from it are valid
     std::vector<std::uint64_t> adjacency_;   // scratch of order(): bit matrix of the group graph
 
     // Values (factor): per group, its free rows; per group a column panel holding its diagonal
     // block (L below the unit diagonal, D on it) above the blocks of its front groups.
     std::vector<int> size_, local_, varStart_;
     std::vector<int> panelStart_, panelHeight_, blockOffset_;
-    std::vector<Real> values_, diagonal_;  // diagonal_: each free row's own A_rr, for the pivot test
+    std::vector<Real> values_, diagonal_;
+    std::vector<Real> scaled_, update_;  // scratch of eliminate()  // diagonal_: each free row's own A_rr, for the pivot test
     mutable std::vector<Real> work_;
 };
 
