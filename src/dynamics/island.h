@@ -64,6 +64,7 @@ public:
 private:
     void writeRows(IslandContext& context);
     void allowApproach(Real dt);
+    void holdDespiteSoftness();
     LcpStatus solveVelocities(IslandContext& context);
     bool solveWithTree(IslandContext& context);
     bool solveSparse(const WarmStartCache& guess, IslandContext& context);

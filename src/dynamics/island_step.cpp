@@ -29,6 +29,8 @@ void Island::step(Real dt, IslandContext& context) {
     // The tree solver and PGS read the rows themselves: A is built only for the dense solve.
     system_.buildResponses(rows_, bodies_);
     if (context.settings.solver == SolverKind::Exact && !large(context)) system_.buildMatrix(rows_);
+    context.velocityWarmStart.recall(rowKeys_, system_.states(), system_.solution());
+    holdDespiteSoftness();
     system_.setVelocityRhs(rows_, bodies_);
     if (solveVelocities(context) != LcpStatus::Solved) ++context.report.failures;
     system_.applyImpulses(rows_, bodies_);
@@ -76,12 +78,20 @@ void Island::allowApproach(Real dt) {
     }
 }
 
-// Warm-started from the rows with the same keys in the previous step. PGS running out of sweeps
-// is its normal way of stopping, not a failure.
+// A row with CFM c ends its solve with Cdot = target − c·λ: a resting row leaks c·λ·dt of
+// position every step, which the projection then has to take back (a limit holding a leg up
+// leaked 5.5e-7 rad per step). Asking for target + c·λ_previous instead cancels the leak where
+// the impulse is steady and changes nothing else by more than the CFM's share of the answer.
+void Island::holdDespiteSoftness() {
+    const std::span<const Real> previous = system_.solution();
+    for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i].target += rows_[i].cfm * previous[i];
+}
+
+// Warm-started from the rows with the same keys in the previous step (recalled by step()). PGS
+// running out of sweeps is its normal way of stopping, not a failure.
 LcpStatus Island::solveVelocities(IslandContext& context) {
     std::span<Real> x = system_.solution();
     std::span<LcpRowState> states = system_.states();
-    context.velocityWarmStart.recall(rowKeys_, states, x);
     if (large(context)) ++context.report.largeIslands;
     if (iterative(context)) {
         const LcpPgsResult r = rowPgs_.solve(rows_, system_, bodies_.size(), x, context.settings.pgs);

@@ -13,7 +13,7 @@ namespace {
 // once) and the pivoting solvers, which always finish, are cheaper than more trials. Friction
 // coupling makes the problem neither symmetric nor a P-matrix one, so switching rules alone do
 // not promise to settle.
-constexpr int kMaxTrials = 12;
+constexpr int kMaxTrials = 8;
 // Trials without fewer wrong rows after which only one row is switched per trial (Murty's
 // least-index rule), instead of all of them (which may cycle).
 constexpr int kStaleTrials = 3;

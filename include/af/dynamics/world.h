@@ -12,7 +12,9 @@
 //     friction rows, and the extra row source, if any, adds its rows;
 //  3. the velocity LCP  J M⁻¹ Jᵀ λ = target − J v + w  is solved (exact pivoting, the tree
 //     solver or PGS, warm started from the previous step's pattern and impulses) and the
-//     impulses applied;
+//     impulses applied. Each row's target is raised by its CFM times its previous impulse: a
+//     row's softness lets it yield CFM·λ every step, which a body resting on its rows would
+//     otherwise carry as velocity and lose as position each step;
 //  4. positions are integrated with the new velocities, then air friction;
 //  5. SHAKE closes the drift the step's own motion opened in the joints, with impulses along
 //     the start-of-step constraint directions that move positions and velocities together
