@@ -193,30 +193,40 @@ bool SparseRowFactor::factor(std::span<const ConstraintRow> rows, std::span<cons
 }
 
 // A_rs = Σ over the bodies rows r and s share of J_r M⁻¹ J_sᵀ, into the panel of the row eliminated
-// first (lower triangle of the diagonal blocks), and the CFM on the diagonal.
+// first (lower triangle of the diagonal blocks), and the CFM on the diagonal. Per body, its free
+// rows' Jacobians and responses on it are packed in elimination order first, so that each pair is
+// one product of two packed rows.
 void SparseRowFactor::assemble(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                                std::span<const Real> cfm) {
     const std::size_t bodies = bodyStart_.size() - 1;
     for (std::size_t b = 0; b < bodies; ++b) {
         const int body = static_cast<int>(b);
+        packed_.clear();
         for (int p = bodyStart_[b]; p < bodyStart_[b + 1]; ++p) {
             const std::size_t r = static_cast<std::size_t>(bodyRows_[static_cast<std::size_t>(p)]);
             if (local_[r] < 0) continue;
-            const int gr = groupOfRow_[r];
-            const Side jr = jacobianOn(rows[r], body);
-            Real* column = &values_[static_cast<std::size_t>(panelStart_[static_cast<std::size_t>(gr)] +
-                                                             local_[r] * panelHeight_[static_cast<std::size_t>(gr)])];
-            int lastGroup = gr, lastOffset = 0;  // rows of one group come together
-            for (int q = bodyStart_[b]; q < bodyStart_[b + 1]; ++q) {
-                const std::size_t s = static_cast<std::size_t>(bodyRows_[static_cast<std::size_t>(q)]);
-                const int gs = groupOfRow_[s];
-                if (local_[s] < 0 || gs < gr || (gs == gr && local_[s] < local_[r])) continue;
-                if (gs != lastGroup) {
-                    lastGroup = gs;
-                    lastOffset = blockOffset_[static_cast<std::size_t>(frontSlot(gr, gs))];
+            const Side j = jacobianOn(rows[r], body), m = responseOn(rows[r], responses[r], body);
+            packed_.push_back({{j.linear.x(), j.linear.y(), j.linear.z(), j.angular.x(), j.angular.y(), j.angular.z()},
+                               {m.linear.x(), m.linear.y(), m.linear.z(), m.angular.x(), m.angular.y(), m.angular.z()},
+                               groupOfRow_[r],
+                               local_[r]});
+        }
+        std::sort(packed_.begin(), packed_.end(),
+                  [](const Packed& x, const Packed& y) { return x.group != y.group ? x.group < y.group : x.local < y.local; });
+        for (std::size_t i = 0; i < packed_.size(); ++i) {
+            const Packed& ri = packed_[i];
+            const std::size_t gr = static_cast<std::size_t>(ri.group);
+            Real* column = &values_[static_cast<std::size_t>(panelStart_[gr] + ri.local * panelHeight_[gr])];
+            int group = ri.group, offset = 0;
+            for (std::size_t k = i; k < packed_.size(); ++k) {
+                const Packed& rk = packed_[k];
+                if (rk.group != group) {
+                    group = rk.group;
+                    offset = blockOffset_[static_cast<std::size_t>(frontSlot(ri.group, group))];
                 }
-                const Side ms = responseOn(rows[s], responses[s], body);
-                column[(gs == gr ? 0 : lastOffset) + local_[s]] += jr.linear.dot(ms.linear) + jr.angular.dot(ms.angular);
+                column[offset + rk.local] += ri.jacobian[0] * rk.response[0] + ri.jacobian[1] * rk.response[1] +
+                                             ri.jacobian[2] * rk.response[2] + ri.jacobian[3] * rk.response[3] +
+                                             ri.jacobian[4] * rk.response[4] + ri.jacobian[5] * rk.response[5];
             }
         }
     }

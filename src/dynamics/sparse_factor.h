@@ -82,7 +82,12 @@ private:
     std::vector<int> size_, local_, varStart_;
     std::vector<int> panelStart_, panelHeight_, blockOffset_;
     std::vector<Real> values_, diagonal_;
-    std::vector<Real> scaled_, update_;  // scratch of eliminate()  // diagonal_: each free row's own A_rr, for the pivot test
+    std::vector<Real> scaled_, update_;  // scratch of eliminate()
+    struct Packed {                      // a free row on one body (assemble)
+        Real jacobian[6], response[6];
+        int group, local;
+    };
+    std::vector<Packed> packed_;  // diagonal_: each free row's own A_rr, for the pivot test
     mutable std::vector<Real> work_;
 };
 
