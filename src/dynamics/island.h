@@ -70,8 +70,9 @@ private:
     bool solveSparse(const WarmStartCache& guess, IslandContext& context);
     void statesFromImpulses(const IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
-    void closeDrift(Real dt, IslandContext& context);
-    void projectPositions(IslandContext& context);
+    bool closeDrift(Real dt, IslandContext& context);
+    // rowsAtPoses: rows_ are already written at the bodies' current poses.
+    void projectPositions(IslandContext& context, bool rowsAtPoses);
     bool moveWhileImproving(Real& violation, IslandContext& context);
     LcpStatus solvePositions();
     bool solvePositionsWithTree(IslandContext& context);

@@ -58,11 +58,11 @@ void Island::step(Real dt, IslandContext& context) {
     // SHAKE's velocity change closes an O(dt²) drift. After PGS the joints hold only as far as
     // its sweeps got, the drift is O(dt), and giving it back as velocity pumps energy (a
     // resting ragdoll's head kept spinning at 5 rad/s): the projection alone removes it.
-    if (!iterative(context)) closeDrift(dt, context);
-    projectPositions(context);
+    const bool rowsAtPoses = !iterative(context) && !closeDrift(dt, context);
+    projectPositions(context, rowsAtPoses);
 }
 
-void Island::project(IslandContext& context) { projectPositions(context); }
+void Island::project(IslandContext& context) { projectPositions(context, false); }
 
 // Limit and contact rows are written a little before they are reached (speculatively), so that
 // they hold from the first step they are needed. Until the gap C > 0 is closed such a row must
@@ -258,11 +258,13 @@ bool Island::solvePositionsWithTree(IslandContext& context) {
 // kShakeTrust times the drift it closes, and the second step's drift a tenth of the first's.
 // Otherwise (a long chain whipping through a large turn in one step) the step keeps its
 // pre-SHAKE state and leaves the drift to the position-only pass, which can only remove energy.
-void Island::closeDrift(Real dt, IslandContext& context) {
+//
+// Returns whether it moved the bodies; if not, the rows it wrote are those of the current poses.
+bool Island::closeDrift(Real dt, IslandContext& context) {
     beforeShake_.assign(bodies_.begin(), bodies_.end());
     writeRows(context);
     const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
-    if (first.drift <= kShakeTolerance) return;
+    if (first.drift <= kShakeTolerance) return false;
     writeRows(context);
     const ShakeCorrection::Step second = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
     const bool wellConditioned = first.move <= kShakeTrust * first.drift + kShakeTolerance;
@@ -271,6 +273,7 @@ void Island::closeDrift(Real dt, IslandContext& context) {
         std::copy(beforeShake_.begin(), beforeShake_.end(), bodies_.begin());
         ++context.report.shakeRefusals;
     }
+    return true;
 }
 
 // Whatever remains (joint errors older than the step, limit and contact penetration, drift
@@ -279,8 +282,8 @@ void Island::closeDrift(Real dt, IslandContext& context) {
 // the largest violation (halving the move up to kProjectionHalvings times): with large errors,
 // or rows that nearly contradict each other (a limb pinned between another figure and its own
 // joint), the full linear move can overshoot and tear joints open instead of closing them.
-void Island::projectPositions(IslandContext& context) {
-    writeRows(context);
+void Island::projectPositions(IslandContext& context, bool rowsAtPoses) {
+    if (!rowsAtPoses) writeRows(context);
     Real violation = largestViolation();
     for (int pass = 0; pass < context.settings.positionIterations && violation > context.settings.positionTolerance; ++pass) {
         ++context.report.projectionPasses;
