@@ -4,17 +4,18 @@
 
 namespace af {
 
-// The same keys in the same order as last time (a resting figure): the index by key still holds.
 void WarmStartCache::remember(std::span<const std::uint64_t> keys, std::span<const LcpRowState> states,
                               std::span<const Real> impulses) {
-    bool sameKeys = keys.size() == entries_.size();
-    for (std::size_t i = 0; i < keys.size() && sameKeys; ++i) sameKeys = entries_[i].key == keys[i];
     entries_.resize(keys.size());
     for (std::size_t i = 0; i < keys.size(); ++i) entries_[i] = {keys[i], states[i], impulses[i]};
-    if (!sameKeys || byKey_.size() != entries_.size()) sort();
+    sort();
 }
 
+// The same keys in the same order as at the last sort (a resting figure): the index still holds.
 void WarmStartCache::sort() {
+    bool sameKeys = byKey_.size() == entries_.size();
+    for (std::size_t i = 0; i < byKey_.size() && sameKeys; ++i) sameKeys = entries_[byKey_[i].second].key == byKey_[i].first;
+    if (sameKeys) return;
     byKey_.resize(entries_.size());
     for (std::size_t i = 0; i < entries_.size(); ++i) byKey_[i] = {entries_[i].key, i};
     std::sort(byKey_.begin(), byKey_.end());
@@ -30,7 +31,7 @@ int WarmStartCache::recall(std::span<const std::uint64_t> keys, std::span<LcpRow
             const auto k = std::lower_bound(byKey_.begin(), byKey_.end(), std::make_pair(keys[i], std::size_t(0)));
             at = k != byKey_.end() && k->first == keys[i] ? k->second : entries_.size();
         }
-        if (at < entries_.size()) {
+        if (at < entries_.size() && entries_[at].key == keys[i]) {
             states[i] = entries_[at].state;
             impulses[i] = entries_[at].impulse;
             next = at + 1;

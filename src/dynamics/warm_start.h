@@ -23,10 +23,8 @@ public:
                   std::span<const Real> impulses);
     // Fills the guesses of `keys`; returns how many rows were found.
     int recall(std::span<const std::uint64_t> keys, std::span<LcpRowState> states, std::span<Real> impulses) const;
-    void clear() {
-        entries_.clear();
-        byKey_.clear();
-    }
+    // Keeps the index by key, so that sort() after the same adds as last time has nothing to do.
+    void clear() { entries_.clear(); }
     // Builds the cache from others with disjoint keys (the islands of a step): clear, add each,
     // then sort.
     void add(const WarmStartCache& other) { entries_.insert(entries_.end(), other.entries_.begin(), other.entries_.end()); }
