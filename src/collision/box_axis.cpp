@@ -27,7 +27,7 @@ std::optional<SeparatingAxis> findBestBoxAxis(const PlacedShape& a, const Placed
     // A box in its own body frame, as collide() places A, has the working frame's axes: then the
     // products with A's axes are copies, and are skipped.
     const bool aIsFrame = boxA.aligned && a.rotation == Mat3::Identity();
-    const Mat3 axesB = b.rotation * boxB.axes;  // working frame, columns v_j
+    const Mat3 axesB = boxB.aligned ? b.rotation : Mat3(b.rotation * boxB.axes);  // working frame, columns v_j
     const Vec3 centreB = b.rotation * boxB.centre + b.translation;
     Mat3 axesA, c;  // A's axes in the working frame, columns u_i; c(i, j) = u_i · v_j
     Vec3 between, dA;  // B's centre from A's, in the working frame and along A's axes
@@ -42,10 +42,18 @@ std::optional<SeparatingAxis> findBestBoxAxis(const PlacedShape& a, const Placed
         between = centreB - (a.rotation * boxA.centre + a.translation);
         dA = axesA.transpose() * between;
     }
+    // A's faces, then B's, first only as a test for a gap beyond the margin (most pairs the
+    // broadphase lets through end here): along each axis the better of its two faces.
     const Mat3 absC = c.cwiseAbs();
-    const Vec3 dB = axesB.transpose() * between;  // the same along B's axes
-    const Vec3 radiusB = absC * boxB.half;              // B's half width along each u_i
+    const Vec3 radiusB = absC * boxB.half;  // B's half width along each u_i
+    if ((dA.cwiseAbs() - radiusB - boxA.half).maxCoeff() > margin) {
+        return std::nullopt;
+    }
+    const Vec3 dB = axesB.transpose() * between;        // the same along B's axes
     const Vec3 radiusA = absC.transpose() * boxA.half;  // A's half width along each v_j
+    if ((dB.cwiseAbs() - radiusA - boxB.half).maxCoeff() > margin) {
+        return std::nullopt;
+    }
 
     // Faces in the polytopes' order, so that ties go where the polytope search sends them.
     constexpr Real kNone = -std::numeric_limits<Real>::infinity();
@@ -54,9 +62,6 @@ std::optional<SeparatingAxis> findBestBoxAxis(const PlacedShape& a, const Placed
     for (int f = 0; f < 6; ++f) {
         const int i = boxA.faceAxis[f];
         const Real sep = boxA.faceSign[f] * dA[i] - radiusB[i] - boxA.half[i];
-        if (sep > margin) {
-            return std::nullopt;
-        }
         if (sep > sepFaceA) {
             bestFaceA = f;
             sepFaceA = sep;
@@ -65,9 +70,6 @@ std::optional<SeparatingAxis> findBestBoxAxis(const PlacedShape& a, const Placed
     for (int f = 0; f < 6; ++f) {
         const int j = boxB.faceAxis[f];
         const Real sep = -boxB.faceSign[f] * dB[j] - radiusA[j] - boxB.half[j];
-        if (sep > margin) {
-            return std::nullopt;
-        }
         if (sep > sepFaceB) {
             bestFaceB = f;
             sepFaceB = sep;

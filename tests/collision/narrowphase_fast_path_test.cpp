@@ -87,11 +87,13 @@ struct BoxPair {
     RigidPose poseA, poseB;
 };
 
-// Half of them made around the origin (A's axes are then the working frame's), half not.
+// Each box made around the origin (square to its frame) or turned and shifted in it, at random.
+Polytope someBox(std::mt19937& rng) {
+    return std::uniform_int_distribution<int>(0, 1)(rng) == 1 ? box(randomVector(rng, 0.2, 3)) : offsetBox(rng);
+}
+
 BoxPair randomBoxPair(std::mt19937& rng) {
-    const bool aligned = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
-    BoxPair p{aligned ? box(randomVector(rng, 0.2, 3)) : offsetBox(rng), offsetBox(rng),
-              pose(randomVector(rng, -50, 50), randomRotation(rng)), {}};
+    BoxPair p{someBox(rng), someBox(rng), pose(randomVector(rng, -50, 50), randomRotation(rng)), {}};
     p.poseB = pose(p.poseA.position + randomVector(rng, -3.5, 3.5), randomRotation(rng));
     return p;
 }
