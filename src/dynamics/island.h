@@ -113,7 +113,6 @@ private:
     ShakeCorrection shake_;
     std::vector<RigidBody> beforeShake_;
     std::vector<RigidBody> beforeProjection_;
-    ConstraintRows solvedRows_;
     WarmStartCache velocityCache_;
     WarmStartCache positionCache_;  // the last position pass of this island (this step or before)
     std::vector<Real> frozenLo_, frozenHi_, pgsAnswer_;

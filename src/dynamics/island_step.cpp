@@ -309,10 +309,9 @@ void Island::projectPositions(IslandContext& context, bool rowsAtPoses) {
 // the bodies back and returns false.
 bool Island::moveWhileImproving(Real& violation, IslandContext& context) {
     beforeProjection_.assign(bodies_.begin(), bodies_.end());
-    solvedRows_ = rows_;
     std::span<Real> x = system_.solution();
     for (int attempt = 0; attempt <= kProjectionHalvings; ++attempt) {
-        system_.applyDisplacements(solvedRows_, bodies_);
+        system_.applyDisplacements(bodies_);
         writeRows(context);
         const Real after = largestViolation();
         if (after < violation) {
