@@ -120,45 +120,20 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     }
     const Real wTolerance = tolerance * bScale;
 
+    switched_.assign(n, 0);
     int fewestWrong = std::numeric_limits<int>::max(), stale = 0;
     for (int trial = 1; trial <= kMaxTrials; ++trial) {
         result.trials = trial;
         if (!solvePattern(rows, responses, problem, x, states, result)) return result;
-        for (std::size_t i = 0; i < n; ++i) use_[i] = 1;
-        velocityChange(rows, responses, x, {});
-        for (std::size_t i = 0; i < n; ++i)
-            w_[i] = along(rows[i]) + (problem.cfm.empty() ? 0 : problem.cfm[i]) * x[i] - problem.b[i];
-        bounds(problem, x);
-
-        int wrong = 0, firstWrong = -1;
-        for (std::size_t i = 0; i < n; ++i) {
-            const Real xTolerance = tolerance * std::max({Real(1), std::isfinite(lo_[i]) ? std::abs(lo_[i]) : 0,
-                                                          std::isfinite(hi_[i]) ? std::abs(hi_[i]) : 0});
-            LcpRowState want = states[i];
-            if (states[i] == LcpRowState::Free) {
-                if (x[i] < lo_[i] - xTolerance) want = LcpRowState::AtLower;
-                if (x[i] > hi_[i] + xTolerance) want = LcpRowState::AtUpper;
-            } else if (states[i] == LcpRowState::AtLower && lo_[i] != hi_[i] && w_[i] < -wTolerance) {
-                want = LcpRowState::Free;
-            } else if (states[i] == LcpRowState::AtUpper && lo_[i] != hi_[i] && w_[i] > wTolerance) {
-                want = LcpRowState::Free;
-            }
-            next_[i] = want;
-            if (want == states[i]) continue;
-            ++wrong;
-            if (firstWrong < 0) firstWrong = static_cast<int>(i);
-        }
-        if (wrong == 0) {
-            for (std::size_t i = 0; i < n; ++i)
-                result.residual = std::max(result.residual, std::abs(x[i] - mid(lo_[i], hi_[i], x[i] - w_[i])));
-            return result;
-        }
+        int firstWrong = -1;
+        const int wrong = check(rows, responses, problem, x, states, wTolerance, tolerance, firstWrong);
+        if (wrong == 0) return finish(x, result);
         stale = wrong < fewestWrong ? 0 : stale + 1;
         fewestWrong = std::min(fewestWrong, wrong);
-        if (stale < kStaleTrials) {
-            std::copy(next_.begin(), next_.end(), states.begin());
-        } else {
-            states[static_cast<std::size_t>(firstWrong)] = next_[static_cast<std::size_t>(firstWrong)];
+        for (std::size_t i = 0; i < n; ++i) {
+            if (next_[i] == states[i] || (stale >= kStaleTrials && static_cast<int>(i) != firstWrong)) continue;
+            states[i] = next_[i];
+            switched_[i] = 1;
         }
         // A friction row whose normal stops pushing has nothing to push with; when the normal
         // pushes again it starts sticking.
@@ -170,7 +145,46 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
             if (normalPushes && states[i] == LcpRowState::AtLower && lo_[i] == hi_[i]) states[i] = LcpRowState::Free;
         }
     }
+    if (solveCore(rows, responses, problem, x, states, wTolerance, tolerance, result)) return finish(x, result);
     result.status = LcpStatus::NotConverged;
+    return result;
+}
+
+// w of every row at x, the bounds at x, and the state each row wants (next_); returns how many
+// rows are in the wrong state, the first of them in firstWrong.
+int SparseLcpSolver::check(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                           const LcpProblem& problem, std::span<const Real> x, std::span<const LcpRowState> states,
+                           Real wTolerance, Real tolerance, int& firstWrong) {
+    const std::size_t n = rows.size();
+    velocityChange(rows, responses, x, {});
+    for (std::size_t i = 0; i < n; ++i)
+        w_[i] = along(rows[i]) + (problem.cfm.empty() ? 0 : problem.cfm[i]) * x[i] - problem.b[i];
+    bounds(problem, x);
+    int wrong = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Real xTolerance = tolerance * std::max({Real(1), std::isfinite(lo_[i]) ? std::abs(lo_[i]) : 0,
+                                                      std::isfinite(hi_[i]) ? std::abs(hi_[i]) : 0});
+        LcpRowState want = states[i];
+        if (states[i] == LcpRowState::Free) {
+            if (x[i] < lo_[i] - xTolerance) want = LcpRowState::AtLower;
+            if (x[i] > hi_[i] + xTolerance) want = LcpRowState::AtUpper;
+        } else if (states[i] == LcpRowState::AtLower && lo_[i] != hi_[i] && w_[i] < -wTolerance) {
+            want = LcpRowState::Free;
+        } else if (states[i] == LcpRowState::AtUpper && lo_[i] != hi_[i] && w_[i] > wTolerance) {
+            want = LcpRowState::Free;
+        }
+        next_[i] = want;
+        if (want == states[i]) continue;
+        ++wrong;
+        if (firstWrong < 0) firstWrong = static_cast<int>(i);
+    }
+    return wrong;
+}
+
+// The natural residual of the answer, from the w and bounds check() left.
+SparseLcpResult& SparseLcpSolver::finish(std::span<const Real> x, SparseLcpResult& result) const {
+    for (std::size_t i = 0; i < x.size(); ++i)
+        result.residual = std::max(result.residual, std::abs(x[i] - mid(lo_[i], hi_[i], x[i] - w_[i])));
     return result;
 }
 

@@ -9,9 +9,11 @@
 // normal's, solved together with the free rows (see solvePattern).
 //
 // No matrix of all rows is ever formed: A's products go through the bodies (M⁻¹Jᵀ per row).
-// The answer is accepted only when every row is complementary within the tolerance; when the
+// The answer is accepted only when every row is complementary within the tolerance. When the
 // guesses do not settle within a few trials (a tumbling figure whose contacts all change at once)
-// the solve says so and the caller falls back to the pivoting solvers, which always finish.
+// the rows they kept switching are solved as a dense LCP on their Schur complement by the
+// pivoting solver (sparse_core.cpp); if that core is too large, or the rows outside it were
+// guessed wrong, the solve says so and the caller falls back to its other solvers.
 
 #include "af/dynamics/lcp.h"
 #include "sparse_factor.h"
@@ -26,6 +28,7 @@ struct SparseLcpResult {
                                            // rows the factorisation cannot take (see analyse)
     int trials = 0;                        // guesses solved (1: the warm start held)
     int couplingSolves = 0;                // trials with sliding friction rows (solved coupled)
+    int coreRows = 0;                      // rows of the dense core, when the trials did not settle
     int factorisations = 0;
     Real residual = 0;                     // natural residual (lcp.h) of the answer
 };
@@ -46,6 +49,11 @@ private:
     void solveFree(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                    std::span<const Real> b, std::span<const Real> x, std::span<Real> out);
     bool solveSmall(std::size_t k);
+    int check(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
+              std::span<const Real> x, std::span<const LcpRowState> states, Real wTolerance, Real tolerance, int& firstWrong);
+    SparseLcpResult& finish(std::span<const Real> x, SparseLcpResult& result) const;
+    bool solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
+                   std::span<Real> x, std::span<LcpRowState> states, Real wTolerance, Real tolerance, SparseLcpResult& result);
     int source(const LcpProblem& problem, std::size_t i) const;
     bool sliding(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const;
     void bounds(const LcpProblem& problem, std::span<const Real> x);
@@ -55,7 +63,15 @@ private:
 
     SparseRowFactor factor_;
     std::vector<Real> lo_, hi_, w_, rhs_, paths_, small_, beta_;
-    std::vector<std::uint8_t> free_, use_, reached_;
+    std::vector<std::uint8_t> free_, use_, reached_, switched_;
+    // The core (sparse_core.cpp): rows whose state the trials could not settle, solved as a dense
+    // LCP on their Schur complement with the pivoting solver.
+    std::vector<int> core_, coreIndex_;
+    std::vector<std::uint8_t> inCore_;
+    std::vector<Real> coreA_, coreB_, coreLo_, coreHi_, coreMu_, coreCfm_, coreX_, zeros_;
+    std::vector<int> coreFindex_;
+    std::vector<LcpRowState> coreStates_;
+    LcpExactSolver coreSolver_;
     std::vector<int> slidingRows_;
     std::vector<LcpRowState> next_;
     std::vector<Vec3> linear_, angular_;

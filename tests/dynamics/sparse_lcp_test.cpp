@@ -144,15 +144,16 @@ void report(const char* what, const Scene& scene, Real velocity, Real position) 
 
 // The shaken humanoid's steps, limits engaging and joint friction slipping, each solve guessed
 // from the previous step's answer as World does (here by row index, while the rows stay the
-// same): the guesses settle in a few trials, the answers agree with the dense solve. A solve may
-// give up where the pattern changed a lot (the caller then pivots); that stays rare.
+// same): the guesses settle in a few trials, the answers agree with the dense solve. Where the
+// pattern changed a lot the trials do not settle, and the rows they kept switching are solved as
+// a dense core (without it 3 of the 120 solves gave up).
 TEST(SparseLcp, ShakenHumanoidWithLimitsAndJointFrictionMatchesTheDenseSolve) {
     Scene scene(hungHumanoid());
     spin(scene, 3, 6);
     TreeSolver tree;
     tree.setStructure(scene.bodies, scene.joints);
     Real velocity = 0, position = 0;
-    int withLimits = 0, gaveUp = 0, trials = 0;
+    int withLimits = 0, gaveUp = 0, trials = 0, cores = 0;
     const int steps = 60;
     SparseRun lastVelocity, lastPosition;
     for (int i = 0; i < steps; ++i) {
@@ -165,6 +166,7 @@ TEST(SparseLcp, ShakenHumanoidWithLimitsAndJointFrictionMatchesTheDenseSolve) {
             const bool same = last.states.size() == scene.rows.size();
             SparseRun run = solveSparse(scene, isPosition, same ? std::span<const LcpRowState>(last.states) : std::span<const LcpRowState>());
             trials += run.result.trials;
+            if (run.result.coreRows > 0) ++cores;
             if (run.result.status != LcpStatus::Solved) {
                 ++gaveUp;
                 last = {};
@@ -176,10 +178,11 @@ TEST(SparseLcp, ShakenHumanoidWithLimitsAndJointFrictionMatchesTheDenseSolve) {
         }
     }
     report("shaken humanoid, 60 steps", scene, velocity, position);
-    std::printf("sparse, shaken humanoid: %.2f trials per solve, %d of %d solves gave up\n",
-                static_cast<double>(trials) / (2 * steps), gaveUp, 2 * steps);
+    std::printf("sparse, shaken humanoid: %.2f trials per solve, %d dense cores, %d of %d solves gave up\n",
+                static_cast<double>(trials) / (2 * steps), cores, gaveUp, 2 * steps);
     EXPECT_GE(withLimits, 8) << "poses with at least 4 limit rows";
-    EXPECT_LE(gaveUp, 2 * steps / 20) << "at most one solve in 20";
+    EXPECT_GE(cores, 1);
+    EXPECT_EQ(gaveUp, 0);
     EXPECT_LE(trials, 3 * 2 * steps) << "three trials per solve or fewer on average";
 }
 
