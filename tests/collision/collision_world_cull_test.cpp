@@ -5,6 +5,7 @@
 #include "af/collision/collision_world.h"
 
 #include "af/geometry/shapes.h"
+#include "narrowphase_test_util.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -14,18 +15,11 @@
 namespace af {
 namespace {
 
+using test::randomRotation;
+using test::randomVector;
+
 constexpr ContentsMask kCorpse = contents::Corpse;
 constexpr ContentsMask kHits = contents::Solid | contents::Corpse;
-
-Mat3 randomRotation(std::mt19937& rng) {
-    std::normal_distribution<Real> g;
-    return Eigen::Quaternion<Real>(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
-}
-
-Vec3 randomVector(std::mt19937& rng, Real lo, Real hi) {
-    std::uniform_real_distribution<Real> u(lo, hi);
-    return {u(rng), u(rng), u(rng)};
-}
 
 bool sameContact(const BodyContact& x, const BodyContact& y) {
     if (x.bodyA != y.bodyA || x.bodyB != y.bodyB || x.staticShape != y.staticShape ||

@@ -16,16 +16,8 @@ namespace {
 using namespace collision_detail;
 using test::box;
 using test::pose;
-
-Mat3 randomRotation(std::mt19937& rng) {
-    std::normal_distribution<Real> g;
-    return Eigen::Quaternion<Real>(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
-}
-
-Vec3 randomVector(std::mt19937& rng, Real lo, Real hi) {
-    std::uniform_real_distribution<Real> u(lo, hi);
-    return {u(rng), u(rng), u(rng)};
-}
+using test::randomRotation;
+using test::randomVector;
 
 // A box whose body frame is not its own: shifted and turned, as a body's shape is around its
 // centre of mass.

@@ -12,6 +12,7 @@ using test::box;
 using test::deepest;
 using test::pose;
 using test::rotation;
+using test::randomRotation;
 using test::wellFormed;
 
 constexpr Real kTol = 1e-9;
@@ -232,11 +233,6 @@ TEST(ContactSymmetry, SwappingTheShapesFlipsTheNormalAndKeepsThePoints) {
             EXPECT_TRUE(found) << c.name << " point " << i;
         }
     }
-}
-
-Mat3 randomRotation(std::mt19937& rng) {
-    std::normal_distribution<Real> g;
-    return Eigen::Quaternion<Real>(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
 }
 
 bool inside(const Polytope& world, const Vec3& x, Real tol) {

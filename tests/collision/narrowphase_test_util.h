@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <set>
 
 namespace af::test {
@@ -23,6 +24,17 @@ inline Mat3 rotation(const Vec3& axis, Real degrees) {
 }
 
 inline RigidPose pose(const Vec3& position, const Mat3& rot = Mat3::Identity()) { return {position, rot}; }
+
+// A rotation drawn uniformly (a normalised Gaussian quaternion).
+inline Mat3 randomRotation(std::mt19937& rng) {
+    std::normal_distribution<Real> g;
+    return Eigen::Quaternion<Real>(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+}
+
+inline Vec3 randomVector(std::mt19937& rng, Real lo, Real hi) {
+    std::uniform_real_distribution<Real> u(lo, hi);
+    return {u(rng), u(rng), u(rng)};
+}
 
 inline Real deepest(const Manifold& m) {
     Real d = -std::numeric_limits<Real>::infinity();

@@ -67,8 +67,10 @@ void expectFactorSolvesLikeDense(const Scene& scene, unsigned seed, const char* 
         factor.solve(x);
         Eigen::VectorXd y(m);
         for (Eigen::Index i = 0; i < m; ++i) y(i) = x[static_cast<std::size_t>(index[static_cast<std::size_t>(i)])];
-        for (std::size_t i = 0; i < n; ++i)
-            if (!free[i]) EXPECT_EQ(x[i], 7.0) << "a row outside the free set was written";
+        for (std::size_t i = 0; i < n; ++i) {
+            if (free[i]) continue;
+            EXPECT_EQ(x[i], 7.0) << "a row outside the free set was written";
+        }
         const Eigen::VectorXd dense = a.ldlt().solve(r);
         const Real norm = a.cwiseAbs().rowwise().sum().maxCoeff();
         worstSparse = std::max(worstSparse, (a * y - r).lpNorm<Eigen::Infinity>() / (norm * y.lpNorm<Eigen::Infinity>()));
@@ -236,7 +238,8 @@ TEST(SparseLcp, AGuessThatHoldsCostsOneTrial) {
 TEST(SparseLcp, DependentRowsWithoutCfmAreRefused) {
     const std::vector<RigidBody> bodies = {RigidBody::dynamic(2, Mat3::Identity(), Vec3(0, 0, -5), Quat::Identity())};
     ConstraintRows rows;
-    for (const Vec3& axis : {Vec3::UnitX(), Vec3::UnitZ(), Vec3::UnitZ()}) {
+    const Vec3 axes[] = {Vec3::UnitX(), Vec3::UnitZ(), Vec3::UnitZ()};
+    for (const Vec3& axis : axes) {
         ConstraintRow row;
         row.bodyA = 0;
         row.linearA = axis;
