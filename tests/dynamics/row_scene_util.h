@@ -207,4 +207,19 @@ inline Scene humanoidWithContacts(TreeSolver& solver) {
     return scene;
 }
 
+// Three rows of one body's joint to the world that repeat each other (two are the same) and
+// carry no CFM: a matrix with no pivot for the third.
+inline ConstraintRows dependentRows() {
+    ConstraintRows rows;
+    const Vec3 axes[] = {Vec3::UnitX(), Vec3::UnitZ(), Vec3::UnitZ()};
+    for (const Vec3& axis : axes) {
+        ConstraintRow row;
+        row.bodyA = 0;
+        row.linearA = axis;
+        row.angularA = Vec3(0, 0, 5).cross(axis);
+        rows.add(row);
+    }
+    return rows;
+}
+
 }  // namespace af::test

@@ -237,15 +237,7 @@ TEST(SparseLcp, AGuessThatHoldsCostsOneTrial) {
 // Three rows of one joint that repeat each other and carry no CFM: no pivot for the third.
 TEST(SparseLcp, DependentRowsWithoutCfmAreRefused) {
     const std::vector<RigidBody> bodies = {RigidBody::dynamic(2, Mat3::Identity(), Vec3(0, 0, -5), Quat::Identity())};
-    ConstraintRows rows;
-    const Vec3 axes[] = {Vec3::UnitX(), Vec3::UnitZ(), Vec3::UnitZ()};
-    for (const Vec3& axis : axes) {
-        ConstraintRow row;
-        row.bodyA = 0;
-        row.linearA = axis;
-        row.angularA = Vec3(0, 0, 5).cross(axis);
-        rows.add(row);
-    }
+    const ConstraintRows rows = dependentRows();
     RowSystem system;
     system.build(rows, bodies);
     system.setVelocityRhs(rows, bodies);

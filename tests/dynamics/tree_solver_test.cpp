@@ -88,15 +88,7 @@ TEST(TreeSolverStructure, DependentPrimaryRowsWithoutCfmAreReportedNotHidden) {
     std::vector<Joint> joints(1);
     joints[0].type = ConstraintType::BallAndSocket;
     joints[0].bodyA = 0;
-    ConstraintRows rows;
-    const Vec3 axes[] = {Vec3::UnitX(), Vec3::UnitZ(), Vec3::UnitZ()};
-    for (const Vec3& axis : axes) {
-        ConstraintRow row;
-        row.bodyA = 0;
-        row.linearA = axis;
-        row.angularA = Vec3(0, 0, 5).cross(axis);
-        rows.add(row);
-    }
+    const ConstraintRows rows = dependentRows();
     const std::vector<JointRowRange> ranges = {{.first = 0, .equalityRows = 3}};
     TreeSolver solver;
     solver.setStructure(bodies, joints);
