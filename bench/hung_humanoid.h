@@ -10,18 +10,22 @@
 
 namespace af::bench {
 
-inline Figure hungHumanoid() {
-    const std::string root = AF_SOURCE_DIR;
-    AFParseResult parsed = loadAFFile(root + "/af/humanoid.af");
-    const Md5AnimParseResult anim = loadMd5AnimFile(root + "/models/humanoid/af_pose.md5anim");
-    DeclAF decl = parsed.file.decls.at(0);
+// The decl with its chest welded to the world (a fixed joint "hang"); the tests hang it too.
+inline DeclAF hungByTheChest(DeclAF decl) {
     AFConstraint hang;
     hang.type = ConstraintType::Fixed;
     hang.name = "hang";
     hang.body1 = "chest";
     hang.body2 = "world";
     decl.constraints.push_back(hang);
-    return *buildFigure(decl, skeletonFromMd5Anim(anim.anim, 0), "humanoid.af").figure;
+    return decl;
+}
+
+inline Figure hungHumanoid() {
+    const std::string root = AF_SOURCE_DIR;
+    AFParseResult parsed = loadAFFile(root + "/af/humanoid.af");
+    const Md5AnimParseResult anim = loadMd5AnimFile(root + "/models/humanoid/af_pose.md5anim");
+    return *buildFigure(hungByTheChest(parsed.file.decls.at(0)), skeletonFromMd5Anim(anim.anim, 0), "humanoid.af").figure;
 }
 
 }  // namespace af::bench

@@ -226,8 +226,9 @@ LcpStatus Island::solvePositions() {
 }
 
 // The sparse path's position answer, else the tree solver's, as the dense one's would be (see
-// solveWithTree); the tree factorises the rows without friction rows, which the position problem holds at 0. False when it
-// cannot serve these rows (the fallback is counted) or is not the chosen solver.
+// solveWithTree); the tree factorises the rows without friction rows, which the position problem
+// holds at 0. False when neither can serve these rows (the fallback is counted) or the tree is
+// not the chosen solver.
 bool Island::solvePositionsWithTree(IslandContext& context) {
     if (context.settings.solver != SolverKind::Tree) return false;
     system_.setPositionRhs(rows_);

@@ -54,22 +54,17 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
     for (std::size_t i = 0; i < n; ++i) {
         const ConstraintRow& r = rows[i];
         RowResponse& m = response_[i];
-        if (r.bodyA != kWorldBody) {
-            const std::size_t a = static_cast<std::size_t>(r.bodyA);
-            m.linearA = bodies[a].inverseMass * r.linearA;
-            m.angularA.noalias() = inertia[a] * r.angularA;
-        } else {
-            m.linearA.setZero();
-            m.angularA.setZero();
-        }
-        if (r.bodyB != kWorldBody) {
-            const std::size_t b = static_cast<std::size_t>(r.bodyB);
-            m.linearB = bodies[b].inverseMass * r.linearB;
-            m.angularB.noalias() = inertia[b] * r.angularB;
-        } else {
-            m.linearB.setZero();
-            m.angularB.setZero();
-        }
+        auto side = [&](int body, const Vec3& linear, const Vec3& angular, Vec3& linearOut, Vec3& angularOut) {
+            if (body == kWorldBody) {
+                linearOut.setZero();
+                angularOut.setZero();
+                return;
+            }
+            linearOut = bodies[static_cast<std::size_t>(body)].inverseMass * linear;
+            angularOut.noalias() = inertia[static_cast<std::size_t>(body)] * angular;
+        };
+        side(r.bodyA, r.linearA, r.angularA, m.linearA, m.angularA);
+        side(r.bodyB, r.linearB, r.angularB, m.linearB, m.angularB);
         rowBodies_[i] = {r.bodyA, r.bodyB};
         lo_[i] = r.lo;
         hi_[i] = r.hi;
@@ -177,13 +172,6 @@ void RowSystem::applyImpulses(const ConstraintRows& rows, std::span<RigidBody> b
 }
 
 // Every body moves once, by the sum of its rows' moves, so the order of rows does not matter.
-void RowSystem::applyDisplacements(const ConstraintRows& rows, std::span<RigidBody> bodies) {
-    linearShift_.resize(bodies.size());
-    angularShift_.resize(bodies.size());
-    accumulateResponses(rows.all(), response_, x_, linearShift_, angularShift_);
-    for (std::size_t k = 0; k < bodies.size(); ++k) displaceBody(bodies[k], linearShift_[k], angularShift_[k]);
-}
-
 void RowSystem::applyDisplacements(std::span<RigidBody> bodies) {
     linearShift_.resize(bodies.size());
     angularShift_.resize(bodies.size());

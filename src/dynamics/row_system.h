@@ -56,11 +56,9 @@ public:
 
     // v += M⁻¹ Jᵀ λ for every row's λ in solution().
     void applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies);
-    // x += M⁻¹ Jᵀ λ (linear), orientation turned by I⁻¹ Jᵀ λ (angular).
-    void applyDisplacements(const ConstraintRows& rows, std::span<RigidBody> bodies);
-    // The same with the rows' bodies as buildResponses saw them, so the caller may rewrite its
-    // rows in between (the projection moves, rewrites them to measure, and moves again) without
-    // keeping a copy of the rows it solved.
+    // x += M⁻¹ Jᵀ λ (linear), orientation turned by I⁻¹ Jᵀ λ (angular), with the rows' bodies as
+    // buildResponses saw them, so the caller may rewrite its rows in between (the projection
+    // moves, rewrites them to measure, and moves again) without keeping a copy of the rows.
     void applyDisplacements(std::span<RigidBody> bodies);
 
     const RowResponse& response(std::size_t row) const { return response_[row]; }

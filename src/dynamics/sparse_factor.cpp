@@ -1,7 +1,6 @@
 #include "sparse_factor.h"
 
 #include <algorithm>
-#include <bit>
 
 namespace af {
 

@@ -1,6 +1,7 @@
 #pragma once
 // Figures for the scene tests (collision, rest): our humanoid placed in the world, and free boxes.
 
+#include "../../bench/hung_humanoid.h"
 #include "../figure/figure_test_util.h"
 #include "world_test_util.h"
 
@@ -19,14 +20,7 @@ inline Figure humanoidAt(const Vec3& position, Real yawDegrees = 0, Real pitchDe
 
 // Our humanoid at its af_pose, hung from the world by its chest with a fixed joint.
 inline Figure hungHumanoid() {
-    DeclAF decl = humanoidDecl();
-    AFConstraint hang;
-    hang.type = ConstraintType::Fixed;
-    hang.name = "hang";
-    hang.body1 = "chest";
-    hang.body2 = "world";
-    decl.constraints.push_back(hang);
-    const FigureResult r = buildFigure(decl, humanoidPose(), "humanoid.af");
+    const FigureResult r = buildFigure(bench::hungByTheChest(humanoidDecl()), humanoidPose(), "humanoid.af");
     EXPECT_TRUE(r.ok()) << r.formatDiagnostics();
     return r.figure.value_or(Figure{});
 }

@@ -193,7 +193,7 @@ TEST(TreeSolverExact, ImpulsesAndDisplacementsMoveBodiesAsTheDensePathDoes) {
         std::vector<RigidBody> reference = scene.bodies;
         if (position) {
             solver.applyDisplacements(tree);
-            dense.system.applyDisplacements(scene.rows, reference);
+            dense.system.applyDisplacements(reference);
         } else {
             solver.applyImpulses(tree);
             dense.system.applyImpulses(scene.rows, reference);
