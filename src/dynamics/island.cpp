@@ -2,6 +2,9 @@
 
 #include "island.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace af {
 
 namespace {
@@ -89,6 +92,25 @@ void Island::writeRows(IslandContext& context) {
         extraIndex_[r] = rows_.add(row);
         rowKeys_.push_back(kExtraKeyTag | r);
     }
+}
+
+void Island::measureJointErrors(const IslandContext& context) {
+    jointErrors_.clear();
+    errorRanges_.clear();
+    for (const Joint& joint : joints_) errorRanges_.push_back(writeJointErrors(joint, bodies_, context.settings.rows, jointErrors_));
+}
+
+// The contact rows' errors are those writeContactRows gives their normal rows (the others,
+// friction, have none).
+Real Island::measuredViolation(const IslandContext& context) const {
+    Real worst = 0;
+    for (const RowError& r : jointErrors_) {
+        if (r.lo == 0 && r.hi == 0) continue;
+        worst = std::max(worst, r.lo == 0 ? -r.error : std::abs(r.error));
+    }
+    for (const ContactPoint& p : points_)
+        worst = std::max(worst, -(context.settings.contact.slop - currentContact(p, bodies_).depth));
+    return worst;
 }
 
 }  // namespace af

@@ -12,6 +12,7 @@
 #include "af/dynamics/tree_solver.h"
 #include "af/dynamics/world.h"
 #include "contact_set.h"
+#include "joint_errors.h"
 #include "row_pgs.h"
 #include "row_system.h"
 #include "shake.h"
@@ -63,6 +64,11 @@ public:
 
 private:
     void writeRows(IslandContext& context);
+    // The joint rows' errors at the bodies' poses (jointErrors_, errorRanges_), without the rows.
+    void measureJointErrors(const IslandContext& context);
+    // largestViolation() of the rows writeRows would write now, from jointErrors_ (measured at
+    // the current poses) and the contact points, without writing them. Not for an extra source.
+    Real measuredViolation(const IslandContext& context) const;
     void allowApproach(Real dt);
     void holdDespiteSoftness();
     LcpStatus solveVelocities(IslandContext& context);
@@ -71,8 +77,8 @@ private:
     void statesFromImpulses(const IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
     bool closeDrift(Real dt, IslandContext& context);
-    // rowsAtPoses: rows_ are already written at the bodies' current poses.
-    void projectPositions(IslandContext& context, bool rowsAtPoses);
+    // jointErrorsAtPoses: jointErrors_ are already measured at the bodies' current poses.
+    void projectPositions(IslandContext& context, bool jointErrorsAtPoses);
     bool moveWhileImproving(Real& violation, IslandContext& context);
     LcpStatus solvePositions();
     bool solvePositionsWithTree(IslandContext& context);
@@ -103,6 +109,8 @@ private:
     std::vector<JointRowRange> ranges_;
     ConstraintRows extra_;  // scratch: rows of the extra source, world numbering
     std::vector<int> extraIndex_;
+    std::vector<RowError> jointErrors_;
+    std::vector<JointRowRange> errorRanges_;
     RowSystem system_;
     LcpExactSolver exact_;
     LcpExactSolver exactPosition_;

@@ -58,8 +58,8 @@ void Island::step(Real dt, IslandContext& context) {
     // SHAKE's velocity change closes an O(dt²) drift. After PGS the joints hold only as far as
     // its sweeps got, the drift is O(dt), and giving it back as velocity pumps energy (a
     // resting ragdoll's head kept spinning at 5 rad/s): the projection alone removes it.
-    const bool rowsAtPoses = !iterative(context) && !closeDrift(dt, context);
-    projectPositions(context, rowsAtPoses);
+    const bool jointErrorsAtPoses = !iterative(context) && !closeDrift(dt, context);
+    projectPositions(context, jointErrorsAtPoses);
 }
 
 void Island::project(IslandContext& context) { projectPositions(context, false); }
@@ -260,12 +260,15 @@ bool Island::solvePositionsWithTree(IslandContext& context) {
 // Otherwise (a long chain whipping through a large turn in one step) the step keeps its
 // pre-SHAKE state and leaves the drift to the position-only pass, which can only remove energy.
 //
-// Returns whether it moved the bodies; if not, the rows it wrote are those of the current poses.
+// The drift is measured without writing the rows (a resting figure has none to close); they are
+// written only for SHAKE to move along. Returns whether it moved the bodies; if not, jointErrors_
+// are those of the current poses.
 bool Island::closeDrift(Real dt, IslandContext& context) {
+    measureJointErrors(context);
+    if (shake_.drift(jointErrors_, errorRanges_) <= kShakeTolerance) return false;
     beforeShake_.assign(bodies_.begin(), bodies_.end());
     writeRows(context);
     const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
-    if (first.drift <= kShakeTolerance) return false;
     writeRows(context);
     const ShakeCorrection::Step second = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
     const bool wellConditioned = first.move <= kShakeTrust * first.drift + kShakeTolerance;
@@ -283,10 +286,23 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
 // the largest violation (halving the move up to kProjectionHalvings times): with large errors,
 // or rows that nearly contradict each other (a limb pinned between another figure and its own
 // joint), the full linear move can overshoot and tear joints open instead of closing them.
-void Island::projectPositions(IslandContext& context, bool rowsAtPoses) {
-    if (!rowsAtPoses) writeRows(context);
-    Real violation = largestViolation();
+//
+// The violation is first measured without writing the rows (unless an extra source adds rows of
+// its own): most steps need no pass, and then no rows.
+void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
+    bool rowsAtPoses = false;
+    Real violation = 0;
+    if (context.extraRows) {
+        writeRows(context);
+        rowsAtPoses = true;
+        violation = largestViolation();
+    } else {
+        if (!jointErrorsAtPoses) measureJointErrors(context);
+        violation = measuredViolation(context);
+    }
     for (int pass = 0; pass < context.settings.positionIterations && violation > context.settings.positionTolerance; ++pass) {
+        if (!rowsAtPoses) writeRows(context);
+        rowsAtPoses = true;
         ++context.report.projectionPasses;
         holdFrictionAtZero(rows_, ranges_);
         system_.buildResponses(rows_, bodies_);

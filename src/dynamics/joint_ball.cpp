@@ -12,7 +12,7 @@
 
 namespace af::joint_detail {
 
-JointRowRange writeBallRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
+JointRowRange writeBallRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
     JointRowRange range;
     writePointRows(pair, pair.a.point(joint.anchorA), pair.b.point(joint.anchorB), settings.jointCfm, out);
     range.equalityRows = 3;

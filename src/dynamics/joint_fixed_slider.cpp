@@ -21,7 +21,7 @@
 
 namespace af::joint_detail {
 
-JointRowRange writeFixedRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
+JointRowRange writeFixedRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
     writePointRows(pair, pair.a.point(joint.anchorA), pair.b.point(joint.anchorB), settings.jointCfm, out);
     writeOrientationRows(pair, joint.relative, settings.jointCfm, out);
     JointRowRange range;
@@ -29,7 +29,7 @@ JointRowRange writeFixedRows(const Joint& joint, const Pair& pair, const JointRo
     return range;
 }
 
-JointRowRange writeSliderRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
+JointRowRange writeSliderRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
     writeOrientationRows(pair, joint.relative, settings.jointCfm, out);
     const Vec3 pA = pair.a.point(joint.anchorA);
     const Vec3 d = pA - pair.b.point(joint.anchorB);
@@ -37,8 +37,8 @@ JointRowRange writeSliderRows(const Joint& joint, const Pair& pair, const JointR
     const Vec3 e1 = pair.b.direction(joint.referenceB);
     const Vec3 e2 = pair.b.direction(joint.axisB).cross(e1);
     for (const Vec3& e : {e1, e2})
-        addRow(pair, {e, rA.cross(e), -e, e.cross(pA - pair.b.position)}, e.dot(d), -kInfinity, kInfinity,
-               settings.jointCfm, out);
+        addRow(pair, [&] { return Jacobian{e, rA.cross(e), -e, e.cross(pA - pair.b.position)}; }, e.dot(d), -kInfinity,
+               kInfinity, settings.jointCfm, out);
     JointRowRange range;
     range.equalityRows = 5;
     return range;

@@ -53,7 +53,7 @@ AngleState angleState(const Joint& joint, const Pair& pair) {
 
 }  // namespace
 
-JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
+JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
     JointRowRange range;
     writePointRows(pair, pair.a.point(joint.anchorA), pair.b.point(joint.anchorB), settings.jointCfm, out);
     const Vec3 hA = pair.a.direction(joint.axisA);
@@ -62,7 +62,8 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
     const Vec3 u2 = hA.cross(u1);
     for (const Vec3& u : {u1, u2}) {
         const Vec3 g = u.cross(hB);
-        addRow(pair, {Vec3::Zero(), g, Vec3::Zero(), -g}, hB.dot(u), -kInfinity, kInfinity, settings.jointCfm, out);
+        addRow(pair, [&] { return Jacobian{Vec3::Zero(), g, Vec3::Zero(), -g}; }, hB.dot(u), -kInfinity, kInfinity,
+               settings.jointCfm, out);
     }
     range.equalityRows = 5;
 
@@ -72,7 +73,8 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
         const Real c = joint.hinge.halfWidth - std::fabs(d);
         if (c < settings.limitMargin) {
             const Vec3 g = (d < 0 ? 1 : -1) * s.gradient;
-            addRow(pair, {Vec3::Zero(), g, Vec3::Zero(), -g}, c, 0, kInfinity, settings.limitCfm, out);
+            addRow(pair, [&] { return Jacobian{Vec3::Zero(), g, Vec3::Zero(), -g}; }, c, 0, kInfinity, settings.limitCfm,
+                   out);
             range.limitRows = 1;
         }
     }

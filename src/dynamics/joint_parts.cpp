@@ -63,6 +63,10 @@ Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<con
     return {sideOf(joint.bodyA, bodies, inverseInertiaWorld), sideOf(joint.bodyB, bodies, inverseInertiaWorld)};
 }
 
+Pair kinematicPairOf(const Joint& joint, std::span<const RigidBody> bodies) {
+    return {kinematicSide(joint.bodyA, bodies), kinematicSide(joint.bodyB, bodies)};
+}
+
 void addRow(const Pair& pair, const Jacobian& j, Real error, Real lo, Real hi, Real relativeCfm, ConstraintRows& out) {
     ConstraintRow& row = out.append();
     row.bodyA = pair.a.index;
@@ -101,13 +105,14 @@ Real wrapAngle(Real angle) {
     return angle <= -pi ? angle + 2 * pi : angle;
 }
 
-void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Real relativeCfm, ConstraintRows& out) {
+void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Real relativeCfm, RowOut out) {
     const Vec3 rA = pointA - pair.a.position;
     const Vec3 rB = pointB - pair.b.position;
     const Vec3 error = pointA - pointB;
     for (int i = 0; i < 3; ++i) {
         const Vec3 e = Vec3::Unit(i);
-        addRow(pair, {e, rA.cross(e), -e, e.cross(rB)}, error[i], -kInfinity, kInfinity, relativeCfm, out);
+        addRow(pair, [&] { return Jacobian{e, rA.cross(e), -e, e.cross(rB)}; }, error[i], -kInfinity, kInfinity,
+               relativeCfm, out);
     }
 }
 
@@ -117,7 +122,7 @@ Quat errorRotation(const Pair& pair, const Quat& relative) {
     return e;
 }
 
-void writeOrientationRows(const Pair& pair, const Quat& relative, Real relativeCfm, ConstraintRows& out) {
+void writeOrientationRows(const Pair& pair, const Quat& relative, Real relativeCfm, RowOut out) {
     const Quat e = errorRotation(pair, relative);
     const Real w = e.w();
     const Vec3 v = e.vec();
@@ -126,14 +131,15 @@ void writeOrientationRows(const Pair& pair, const Quat& relative, Real relativeC
     const Mat3 ja = w * Mat3::Identity() - skew;
     const Mat3 jb = -(w * Mat3::Identity() + skew);
     for (int i = 0; i < 3; ++i)
-        addRow(pair, {Vec3::Zero(), ja.row(i).transpose(), Vec3::Zero(), jb.row(i).transpose()}, 2 * v[i], -kInfinity,
-               kInfinity, relativeCfm, out);
+        addRow(
+            pair, [&] { return Jacobian{Vec3::Zero(), ja.row(i).transpose(), Vec3::Zero(), jb.row(i).transpose()}; },
+            2 * v[i], -kInfinity, kInfinity, relativeCfm, out);
 }
 
 Real rotationAngle(const Quat& q) { return 2 * std::atan2(q.vec().norm(), std::fabs(q.w())); }
 
-void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Real relativeCfm, ConstraintRows& out) {
-    addRow(pair, {Vec3::Zero(), axis, Vec3::Zero(), -axis}, 0, -bound, bound, relativeCfm, out);
+void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Real relativeCfm, RowOut out) {
+    addRow(pair, [&] { return Jacobian{Vec3::Zero(), axis, Vec3::Zero(), -axis}; }, 0, -bound, bound, relativeCfm, out);
 }
 
 Real frictionBound(const Joint& joint) {

@@ -4,11 +4,28 @@
 // pyramid limits on a shaft, angular friction). Each part is derived where it is defined.
 
 #include "af/dynamics/joints.h"
+#include "joint_errors.h"
 
 #include <cmath>
+#include <concepts>
 #include <numbers>
+#include <vector>
 
 namespace af::joint_detail {
+
+// Where a joint's rows go: whole rows, or only each row's error and bounds (all that measuring
+// a violation or a drift needs), which skips the Jacobians and the softness, most of a row's cost.
+class RowOut {
+public:
+    RowOut(ConstraintRows& rows) : rows_(&rows) {}
+    RowOut(std::vector<RowError>& errors) : errors_(&errors) {}
+    ConstraintRows* rows() const { return rows_; }
+    std::vector<RowError>* errors() const { return errors_; }
+
+private:
+    ConstraintRows* rows_ = nullptr;
+    std::vector<RowError>* errors_ = nullptr;
+};
 
 // A body's state as a joint needs it; the world is an immovable body at the origin.
 struct Side {
@@ -38,6 +55,8 @@ struct Pair {
 };
 Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies);
 Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld);
+// Without the inertias (zero), for what reads only poses: the rows' errors.
+Pair kinematicPairOf(const Joint& joint, std::span<const RigidBody> bodies);
 
 // The Jacobian of one row: Cdot = linearA·vA + angularA·ωA + linearB·vB + angularB·ωB.
 struct Jacobian {
@@ -50,6 +69,14 @@ struct Jacobian {
 // Appends a row; B's blocks are dropped against the world. cfm = relativeCfm · J M⁻¹ Jᵀ.
 void addRow(const Pair& pair, const Jacobian& jacobian, Real error, Real lo, Real hi, Real relativeCfm,
             ConstraintRows& out);
+// The same with the Jacobian made by jacobianOf() only when whole rows are written.
+template <std::invocable JacobianOf>
+void addRow(const Pair& pair, JacobianOf&& jacobianOf, Real error, Real lo, Real hi, Real relativeCfm, RowOut out) {
+    if (ConstraintRows* rows = out.rows())
+        addRow(pair, jacobianOf(), error, lo, hi, relativeCfm, *rows);
+    else
+        out.errors()->push_back({error, lo, hi});
+}
 
 // A unit vector ⟂ unit v (the hinge `left` of §3.8, made orthogonal).
 Vec3 perpendicular(const Vec3& v);
@@ -59,39 +86,39 @@ inline Real degrees(Real radians) { return radians * (180 / std::numbers::pi_v<R
 inline Real radians(Real degrees) { return degrees * (std::numbers::pi_v<Real> / 180); }
 
 // Point rows: C = pA − pB along the world axes, pA and pB world points carried by A and B.
-void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Real relativeCfm, ConstraintRows& out);
+void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Real relativeCfm, RowOut out);
 
 // The error rotation qA ⊗ relative⁻¹ ⊗ qB⁻¹ (identity when A sits in B's frame as `relative`
 // says), with w ≥ 0.
 Quat errorRotation(const Pair& pair, const Quat& relative);
 // Orientation rows: C = 2·vec(errorRotation) along the world axes.
-void writeOrientationRows(const Pair& pair, const Quat& relative, Real relativeCfm, ConstraintRows& out);
+void writeOrientationRows(const Pair& pair, const Quat& relative, Real relativeCfm, RowOut out);
 // The angle of the error rotation, radians.
 Real rotationAngle(const Quat& q);
 
 // Cone or pyramid limit rows on joint.limitShaft (A) against B; returns how many were written.
-int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out);
+int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out);
 // How far the shaft is past its cone or pyramid, radians (0 inside).
 Real shaftLimitViolation(const Joint& joint, const Pair& pair);
 
 // Twist limit rows of a ball-and-socket joint (joint_twist_limit.cpp); returns how many were
 // written. The twist angle, radians, and how far it is past the limit (0 inside or unlimited).
-int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out);
+int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out);
 Real twistAngleOf(const Joint& joint, const Pair& pair);
 Real twistLimitViolation(const Joint& joint, const Pair& pair);
 
 // A friction row on the relative angular velocity (ωA − ωB)·axis, boxed by ±bound.
-void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Real relativeCfm, ConstraintRows& out);
+void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Real relativeCfm, RowOut out);
 // The friction bound f·|λ_previous|, 0 when the joint has no friction this step.
 Real frictionBound(const Joint& joint);
 
 // Per type; each returns its counts, `first` is set by the caller.
-JointRowRange writeFixedRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
-JointRowRange writeSliderRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
-JointRowRange writeBallRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
-JointRowRange writeUniversalRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
-JointRowRange writeHingeRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
-JointRowRange writeSpringRows(const Joint&, const Pair&, const JointRowSettings&, ConstraintRows&);
+JointRowRange writeFixedRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
+JointRowRange writeSliderRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
+JointRowRange writeBallRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
+JointRowRange writeUniversalRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
+JointRowRange writeHingeRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
+JointRowRange writeSpringRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
 
 Real sliderOffAxisDistance(const Joint&, const Pair&);
 Real universalTwist(const Joint&, const Pair&);

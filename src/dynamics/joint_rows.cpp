@@ -10,8 +10,8 @@ using namespace joint_detail;
 
 namespace {
 
-JointRowRange writeRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
-    const int first = static_cast<int>(out.size());
+JointRowRange writeRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
+    const int first = static_cast<int>(out.rows() ? out.rows()->size() : out.errors()->size());
     JointRowRange range;
     switch (joint.type) {
     case ConstraintType::Fixed: range = writeFixedRows(joint, pair, settings, out); break;
@@ -36,6 +36,11 @@ JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodi
                              std::span<const Mat3> inverseInertiaWorld, const JointRowSettings& settings,
                              ConstraintRows& out) {
     return writeRows(joint, pairOf(joint, bodies, inverseInertiaWorld), settings, out);
+}
+
+JointRowRange writeJointErrors(const Joint& joint, std::span<const RigidBody> bodies, const JointRowSettings& settings,
+                               std::vector<RowError>& out) {
+    return writeRows(joint, kinematicPairOf(joint, bodies), settings, out);
 }
 
 Real jointError(const Joint& joint, std::span<const RigidBody> bodies) {

@@ -63,13 +63,14 @@ FaceState faceState(const Vec3& shaft, const Vec3& side, const Vec3& axis) {
     return s;
 }
 
-void writeAngleLimitRow(const Pair& pair, Real error, const Vec3& gradient, Real relativeCfm, ConstraintRows& out) {
-    addRow(pair, {Vec3::Zero(), gradient, Vec3::Zero(), -gradient}, error, 0, kInfinity, relativeCfm, out);
+void writeAngleLimitRow(const Pair& pair, Real error, const Vec3& gradient, Real relativeCfm, RowOut out) {
+    addRow(pair, [&] { return Jacobian{Vec3::Zero(), gradient, Vec3::Zero(), -gradient}; }, error, 0, kInfinity, relativeCfm,
+           out);
 }
 
 }  // namespace
 
-int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
+int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
     const Vec3 shaft = pair.a.direction(joint.limitShaft);
     int written = 0;
     if (joint.limit == LimitType::Cone) {

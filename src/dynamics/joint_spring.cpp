@@ -24,7 +24,7 @@ Real springLengthOf(const Joint& joint, const Pair& pair) {
     return (pair.b.point(joint.anchorB) - pair.a.point(joint.anchorA)).norm();
 }
 
-JointRowRange writeSpringRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
+JointRowRange writeSpringRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
     JointRowRange range;
     const Vec3 pA = pair.a.point(joint.anchorA);
     const Vec3 pB = pair.b.point(joint.anchorB);
@@ -38,12 +38,13 @@ JointRowRange writeSpringRows(const Joint& joint, const Pair& pair, const JointR
 
     const SpringParameters& s = joint.spring;
     if (s.minLength > 0 && length - s.minLength < settings.springLimitMargin) {
-        addRow(pair, lengthening, length - s.minLength, 0, kInfinity, settings.limitCfm, out);
+        addRow(pair, [&] { return lengthening; }, length - s.minLength, 0, kInfinity, settings.limitCfm, out);
         ++range.limitRows;
     }
     if (s.maxLength > 0 && s.maxLength - length < settings.springLimitMargin) {
-        const Jacobian shortening{-lengthening.linearA, -lengthening.angularA, -lengthening.linearB,
-                                  -lengthening.angularB};
+        const auto shortening = [&] {
+            return Jacobian{-lengthening.linearA, -lengthening.angularA, -lengthening.linearB, -lengthening.angularB};
+        };
         addRow(pair, shortening, s.maxLength - length, 0, kInfinity, settings.limitCfm, out);
         ++range.limitRows;
     }

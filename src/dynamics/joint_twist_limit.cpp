@@ -48,18 +48,20 @@ bool limited(const Joint& joint) { return joint.twistHalfAngle > 0 && joint.twis
 
 }  // namespace
 
-int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, ConstraintRows& out) {
+int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
     if (!limited(joint)) return 0;
     const TwistState s = twistState(joint, pair);
     int written = 0;
     const Real upper = joint.twistHalfAngle - s.angle;
     if (upper < settings.limitMargin) {
-        addRow(pair, {Vec3::Zero(), -s.rate, Vec3::Zero(), s.rate}, upper, 0, kInfinity, settings.limitCfm, out);
+        addRow(pair, [&] { return Jacobian{Vec3::Zero(), -s.rate, Vec3::Zero(), s.rate}; }, upper, 0, kInfinity,
+               settings.limitCfm, out);
         ++written;
     }
     const Real lower = joint.twistHalfAngle + s.angle;
     if (lower < settings.limitMargin) {
-        addRow(pair, {Vec3::Zero(), s.rate, Vec3::Zero(), -s.rate}, lower, 0, kInfinity, settings.limitCfm, out);
+        addRow(pair, [&] { return Jacobian{Vec3::Zero(), s.rate, Vec3::Zero(), -s.rate}; }, lower, 0, kInfinity,
+               settings.limitCfm, out);
         ++written;
     }
     return written;

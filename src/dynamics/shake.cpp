@@ -297,6 +297,15 @@ void ShakeCorrection::solveBlock(const Block& block, const std::vector<Real>& k,
     }
 }
 
+Real ShakeCorrection::drift(std::span<const RowError> errors, const std::vector<JointRowRange>& ranges) const {
+    Real worst = 0;
+    std::size_t i = 0;
+    for (const JointRowRange& range : ranges)
+        for (int r = 0; r < range.equalityRows; ++r, ++i)
+            worst = std::max(worst, std::abs(errors[static_cast<std::size_t>(range.first + r)].error - start_[i].error));
+    return worst;
+}
+
 ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
                                              std::span<RigidBody> bodies, Real dt, Real closed) {
     Step step;

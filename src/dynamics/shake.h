@@ -16,6 +16,7 @@
 // refused: see World's use of accepted().
 
 #include "af/dynamics/joints.h"
+#include "joint_errors.h"
 #include "row_system.h"
 
 #include <span>
@@ -32,6 +33,11 @@ public:
         Real drift = 0;  // largest joint drift before the step, length units
         Real move = 0;   // largest move of any body point (centre move + turn × gyration radius)
     };
+
+    // The largest drift of the captured rows: |error now − error at capture| over the equality
+    // rows, with `errors` measured at the moved poses (writeJointErrors, same joints), as apply
+    // measures it from rows written there.
+    Real drift(std::span<const RowError> errors, const std::vector<JointRowRange>& ranges) const;
 
     // With `rows` written at the moved poses (same joints, so the same equality rows in the
     // same order), one Newton step: moves the bodies and changes their velocities by move / dt.
