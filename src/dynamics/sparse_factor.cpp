@@ -63,23 +63,14 @@ bool SparseRowFactor::analyse(std::span<const ConstraintRow> rows, std::span<con
     sorted.assign(rowKey_.begin(), rowKey_.end());
     std::sort(sorted.begin(), sorted.end());
     sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
-    if (sorted != sortedKeys_ || groupKeys_.size() != sorted.size()) {
+    if (sorted != sortedKeys_ || graph_.size() != sorted.size() * words_ || sorted.empty()) {
         sortedKeys_ = sorted;
-        order();
+        connect();
     }
-
-    const std::size_t groups = groupKeys_.size();
-    groupOfRow_.resize(rows.size());
-    rowStart_.assign(groups + 1, 0);
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const auto at = std::lower_bound(sortedKeys_.begin(), sortedKeys_.end(), rowKey_[i]) - sortedKeys_.begin();
-        groupOfRow_[i] = positionOf_[static_cast<std::size_t>(at)];
-        ++rowStart_[static_cast<std::size_t>(groupOfRow_[i]) + 1];
-    }
-    for (std::size_t g = 0; g < groups; ++g) rowStart_[g + 1] += rowStart_[g];
-    groupRows_.resize(rows.size());
-    fill_.assign(rowStart_.begin(), rowStart_.end() - 1);
-    for (std::size_t i = 0; i < rows.size(); ++i) groupRows_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(groupOfRow_[i])]++)] = static_cast<int>(i);
+    pairOfRow_.resize(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        pairOfRow_[i] = static_cast<int>(std::lower_bound(sortedKeys_.begin(), sortedKeys_.end(), rowKey_[i]) - sortedKeys_.begin());
+    if (!orderedFor_.empty()) arrange();
 
     bodyStart_.assign(bodies.size() + 1, 0);
     for (std::size_t i = 0; i < rows.size(); ++i)
@@ -94,60 +85,109 @@ bool SparseRowFactor::analyse(std::span<const ConstraintRow> rows, std::span<con
     return true;
 }
 
-// Minimum fill: always eliminate the group whose neighbours are closest to a clique (none missing
-// for a leaf of a tree, so trees get no fill), then the one with fewest neighbours, then the
-// first. The neighbours left when a group is eliminated are its front, made a clique (the fill).
-void SparseRowFactor::order() {
+// The rows of each group, in the elimination order of order().
+void SparseRowFactor::arrange() {
+    const std::size_t groups = groupKeys_.size();
+    groupOfRow_.resize(pairOfRow_.size());
+    rowStart_.assign(groups + 1, 0);
+    for (std::size_t i = 0; i < pairOfRow_.size(); ++i) {
+        groupOfRow_[i] = positionOf_[static_cast<std::size_t>(pairOfRow_[i])];
+        ++rowStart_[static_cast<std::size_t>(groupOfRow_[i]) + 1];
+    }
+    for (std::size_t g = 0; g < groups; ++g) rowStart_[g + 1] += rowStart_[g];
+    groupRows_.resize(pairOfRow_.size());
+    fill_.assign(rowStart_.begin(), rowStart_.end() - 1);
+    for (std::size_t i = 0; i < pairOfRow_.size(); ++i)
+        groupRows_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(groupOfRow_[i])]++)] = static_cast<int>(i);
+}
+
+// The graph of the groups: a bit matrix of the pairs sharing a body.
+void SparseRowFactor::connect() {
     const std::size_t groups = sortedKeys_.size();
-    const std::size_t words = (groups + 63) / 64;
-    adjacency_.assign(groups * words, 0);
-    auto bit = [&](std::size_t g, std::size_t h) { return (adjacency_[g * words + h / 64] >> (h % 64)) & 1u; };
-    auto set = [&](std::size_t g, std::size_t h) { adjacency_[g * words + h / 64] |= std::uint64_t(1) << (h % 64); };
+    words_ = (groups + 63) / 64;
+    graph_.assign(groups * words_, 0);
     for (std::size_t g = 0; g < groups; ++g)
         for (std::size_t h = g + 1; h < groups; ++h)
             if (shareBody(sortedKeys_[g], sortedKeys_[h])) {
-                set(g, h);
-                set(h, g);
+                graph_[g * words_ + h / 64] |= std::uint64_t(1) << (h % 64);
+                graph_[h * words_ + g / 64] |= std::uint64_t(1) << (g % 64);
             }
+    orderedFor_.clear();
+}
+
+// Minimum fill over the groups with free rows (`active`, by pair). A group without any has no
+// variables and couples nothing, so it takes no part and goes last with an empty front; leaving
+// it in would close loops that are not there (a resting ragdoll's arm lying on its thigh without
+// pushing). Always eliminate the group whose neighbours are closest to a clique (none missing
+// for a leaf of a tree, so trees get no fill), then the one with fewest neighbours, then the
+// first. The neighbours left when a group is eliminated are its front, made a clique (the fill).
+// On bit sets, cheap enough to redo whenever the active groups change.
+void SparseRowFactor::order(const std::vector<std::uint8_t>& active) {
+    const std::size_t groups = sortedKeys_.size(), words = words_;
+    remaining_.assign(words, 0);
+    for (std::size_t g = 0; g < groups; ++g)
+        if (active[g]) remaining_[g / 64] |= std::uint64_t(1) << (g % 64);
+    adjacency_.resize(graph_.size());
+    for (std::size_t g = 0; g < groups; ++g)
+        for (std::size_t w = 0; w < words; ++w) adjacency_[g * words + w] = graph_[g * words + w] & remaining_[w];
+    auto row = [&](std::size_t g) { return &adjacency_[g * words]; };
+    // Pairs of g's remaining neighbours that are not neighbours of each other.
+    auto missing = [&](std::size_t g, std::size_t& degree) {
+        const std::uint64_t* n = row(g);
+        std::size_t links = 0;
+        degree = 0;
+        for (std::size_t w = 0; w < words; ++w)
+            for (std::uint64_t bits = n[w] & remaining_[w]; bits != 0; bits &= bits - 1) {
+                ++degree;
+                const std::uint64_t* m = row(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
+                for (std::size_t v = 0; v < words; ++v) links += static_cast<std::size_t>(__builtin_popcountll(m[v] & n[v] & remaining_[v]));
+            }
+        return (degree * (degree - 1) - links) / 2;
+    };
 
     positionOf_.assign(groups, -1);
     groupKeys_.resize(groups);
     frontStart_.assign(groups + 1, 0);
     front_.clear();
-    std::vector<int>& neighbours = scratchInts_;
-    for (std::size_t step = 0; step < groups; ++step) {
+    std::size_t step = 0;
+    for (;; ++step) {
         std::size_t best = groups, bestFill = 0, bestDegree = 0;
-        for (std::size_t g = 0; g < groups; ++g) {
-            if (positionOf_[g] >= 0) continue;
-            neighbours.clear();
-            for (std::size_t h = 0; h < groups; ++h)
-                if (positionOf_[h] < 0 && bit(g, h)) neighbours.push_back(static_cast<int>(h));
-            std::size_t missing = 0;
-            for (std::size_t u = 0; u < neighbours.size() && (best == groups || missing <= bestFill); ++u)
-                for (std::size_t v = u + 1; v < neighbours.size(); ++v)
-                    missing += bit(static_cast<std::size_t>(neighbours[u]), static_cast<std::size_t>(neighbours[v])) ? 0 : 1;
-            const bool better = best == groups || missing < bestFill || (missing == bestFill && neighbours.size() < bestDegree);
-            if (better) {
-                best = g;
-                bestFill = missing;
-                bestDegree = neighbours.size();
+        for (std::size_t w = 0; w < words; ++w)
+            for (std::uint64_t bits = remaining_[w]; bits != 0; bits &= bits - 1) {
+                const std::size_t g = w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits));
+                std::size_t degree = 0;
+                const std::size_t fill = missing(g, degree);
+                if (best == groups || fill < bestFill || (fill == bestFill && degree < bestDegree)) {
+                    best = g;
+                    bestFill = fill;
+                    bestDegree = degree;
+                }
             }
+        if (best == groups) break;
+        remaining_[best / 64] &= ~(std::uint64_t(1) << (best % 64));
+        const std::size_t first = front_.size();
+        for (std::size_t w = 0; w < words; ++w)
+            for (std::uint64_t bits = row(best)[w] & remaining_[w]; bits != 0; bits &= bits - 1)
+                front_.push_back(static_cast<int>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits))));
+        for (std::size_t u = first; u < front_.size(); ++u) {
+            std::uint64_t* r = row(static_cast<std::size_t>(front_[u]));
+            for (std::size_t v = first; v < front_.size(); ++v)
+                if (u != v) r[static_cast<std::size_t>(front_[v]) / 64] |= std::uint64_t(1) << (front_[v] % 64);
         }
         positionOf_[best] = static_cast<int>(step);
         groupKeys_[step] = sortedKeys_[best];
-        neighbours.clear();
-        for (std::size_t h = 0; h < groups; ++h)
-            if (positionOf_[h] < 0 && bit(best, h)) neighbours.push_back(static_cast<int>(h));
-        for (int u : neighbours) {
-            front_.push_back(u);  // sorted-key index for now, a position below
-            for (int v : neighbours)
-                if (u != v) set(static_cast<std::size_t>(u), static_cast<std::size_t>(v));
-        }
         frontStart_[step + 1] = static_cast<int>(front_.size());
     }
+    for (std::size_t g = 0; g < groups; ++g)
+        if (positionOf_[g] < 0) {
+            positionOf_[g] = static_cast<int>(step);
+            groupKeys_[step] = sortedKeys_[g];
+            frontStart_[++step] = static_cast<int>(front_.size());
+        }
     for (int& f : front_) f = positionOf_[static_cast<std::size_t>(f)];
     for (std::size_t g = 0; g < groups; ++g)
         std::sort(front_.begin() + frontStart_[g], front_.begin() + frontStart_[g + 1]);
+    orderedFor_ = active;
 }
 
 int SparseRowFactor::frontSlot(int column, int group) const {
@@ -158,6 +198,13 @@ int SparseRowFactor::frontSlot(int column, int group) const {
 
 bool SparseRowFactor::factor(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                              std::span<const Real> cfm, std::span<const std::uint8_t> free) {
+    active_.assign(sortedKeys_.size(), 0);
+    for (std::size_t i = 0; i < pairOfRow_.size(); ++i)
+        if (free[i]) active_[static_cast<std::size_t>(pairOfRow_[i])] = 1;
+    if (active_ != orderedFor_) {
+        order(active_);
+        arrange();
+    }
     const std::size_t groups = groupKeys_.size();
     size_.assign(groups, 0);
     local_.assign(rows.size(), -1);

@@ -7,16 +7,19 @@
 // rows to the world (ground contacts) hang off single bodies, so eliminating the groups leaf first
 // creates no fill: the factorisation costs time linear in the number of bodies, with dense work
 // only in the small blocks of rows that meet at one body. Loops (a hand resting on a thigh, two
-// figures touching twice) are handled by a minimum-fill order and its fill.
+// figures touching twice) are handled by a minimum-fill order and its fill. Only groups with free
+// rows take part in the order: a contact that touches without pushing couples nothing, and
+// leaving it in would close loops that are not there (a resting ragdoll's arm lying on its
+// thigh: 36 groups, of which 14 have no free row).
 //
 // With CFM > 0 on every row (or independent rows) A is symmetric positive definite, so LDLᵀ
 // without pivoting is stable in any elimination order. A pivot that is not clearly positive (rows
 // that depend on each other and carry no CFM) makes factor() fail rather than give garbage; the
 // pivoting solver handles those.
 //
-// The grouping and order (analyse) depend only on which bodies the rows join, and are redone only
-// when that changes; factor() depends on the free set; both keep their buffers' capacity, so a
-// step allocates nothing once the largest structure has been seen.
+// The grouping (analyse) depends only on which bodies the rows join, the order also on which
+// groups have free rows; each is redone only when that changes, and both keep their buffers'
+// capacity, so a step allocates nothing once the largest structure has been seen.
 
 #include "af/dynamics/constraint_row.h"
 #include "af/dynamics/rigid_body.h"
@@ -41,6 +44,9 @@ public:
     // indices on entry and y there on return; other entries are left alone.
     void solve(std::span<Real> x) const;
 
+    // Entries the factor holds (L and D, fill included): its size, which the order keeps small.
+    std::size_t entries() const { return values_.size(); }
+
     // Sparse pieces of A_FF⁻¹ = L⁻ᵀ D⁻¹ L⁻¹ for a few entries of it (sliding friction, see
     // sparse_lcp.cpp), in the factor's own numbering of the free rows ("variables"). A vector there
     // comes with a flag per group saying where it may be non-zero; the solves touch only those
@@ -61,21 +67,27 @@ public:
                    std::span<const std::uint8_t> vActive) const;
 
 private:
-    void order();
+    void connect();
+    void order(const std::vector<std::uint8_t>& active);
+    void arrange();
     int frontSlot(int column, int group) const;
     void assemble(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, std::span<const Real> cfm);
     bool eliminate(int group);
 
-    // Structure (analyse): groups numbered in elimination order. sortedKeys_ are the body pairs of
-    // the last order(), ascending; positionOf_ maps their index to a group.
+    // Structure (analyse): the distinct body pairs, ascending (sortedKeys_), each row's pair and
+    // the pairs' graph. Order (factor, when the pairs with free rows change): groups numbered in
+    // elimination order; positionOf_ maps a pair to its group.
     std::vector<std::uint64_t> rowKey_, groupKeys_, sortedKeys_, scratchKeys_;
-    std::vector<int> positionOf_, groupOfRow_;
+    std::vector<int> pairOfRow_, positionOf_, groupOfRow_;
+    std::vector<std::uint8_t> active_, orderedFor_;  // pairs with free rows: now, and as ordered
     std::vector<int> rowStart_, groupRows_;  // rows of each group, ascending
     std::vector<int> frontStart_, front_;    // later groups coupled to each group, fill included, ascending
     std::vector<int> bodyStart_, bodyRows_;  // rows touching each dynamic body, ascending
     std::vector<int> fill_, scratchInts_;    // scratch
     bool analysed_ = false;                  // rowKey_ and what follows from it are valid
-    std::vector<std::uint64_t> adjacency_;   // scratch of order(): bit matrix of the group graph
+    std::vector<std::uint64_t> graph_;       // bit matrix of the pairs sharing a body
+    std::size_t words_ = 0;                  // 64-bit words per row of graph_
+    std::vector<std::uint64_t> adjacency_, remaining_;  // scratch: graph with fill, pairs left
 
     // Values (factor): per group, its free rows; per group a column panel holding its diagonal
     // block (L below the unit diagonal, D on it) above the blocks of its front groups.

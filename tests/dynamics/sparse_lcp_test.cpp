@@ -93,6 +93,41 @@ TEST(SparseRowFactor, SolvesAnyFreeSetAsADenseFactorisationDoes) {
     expectFactorSolvesLikeDense(humanoidWithContacts(humanoidTree), 3, "humanoid with contacts");
 }
 
+// Contacts that touch without pushing (all their rows clamped) couple nothing: a chain whose
+// links all touch each other that way (a chain lying in a heap) factorises as small as the bare
+// chain, although those contacts close loops everywhere.
+TEST(SparseRowFactor, LoopsClosedOnlyByRowsThatAreNotFreeCostNoFill) {
+    auto entries = [](const Scene& s, std::size_t freeRows) {
+        Rows in(s, false);
+        std::vector<std::uint8_t> free(in.rows.size(), 0);
+        std::fill(free.begin(), free.begin() + static_cast<std::ptrdiff_t>(freeRows), 1);
+        SparseRowFactor factor;
+        EXPECT_TRUE(factor.analyse(in.rows.all(), s.bodies));
+        EXPECT_TRUE(factor.factor(in.rows.all(), in.responses, in.system.problem().cfm, free));
+        return factor.entries();
+    };
+    Scene chain(test::horizontalChain(12, 0, true));
+    chain.write();
+    const std::size_t jointRows = chain.rows.size();
+    const std::size_t bare = entries(chain, jointRows);
+    for (int a = 0; a < 12; ++a)
+        for (int b = a + 2; b < 12; ++b) {
+            Contact c;
+            c.bodyA = a;
+            c.bodyB = b;
+            c.point = (chain.bodies[static_cast<std::size_t>(a)].position + chain.bodies[static_cast<std::size_t>(b)].position) / 2;
+            c.normal = Vec3::UnitZ();
+            c.friction = 0.5;
+            chain.contacts.push_back(c);
+        }
+    chain.write();
+    const std::size_t touching = entries(chain, jointRows), pushing = entries(chain, chain.rows.size());
+    std::printf("sparse factor, chain of 12: %zu entries bare, %zu with all links touching, %zu with them pushing\n",
+                bare, touching, pushing);
+    EXPECT_EQ(touching, bare);
+    EXPECT_GT(pushing, 2 * bare);  // the loops, when they push, do cost fill
+}
+
 struct SparseRun {
     SparseLcpResult result;
     std::vector<Real> lambda;
