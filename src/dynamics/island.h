@@ -69,8 +69,10 @@ private:
     // largestViolation() of the rows writeRows would write now, from jointErrors_ (measured at
     // the current poses) and the contact points, without writing them. Not for an extra source.
     Real measuredViolation(const IslandContext& context) const;
-    void allowApproach(Real dt);
-    void holdDespiteSoftness();
+    // A row's target before the velocity solve, from its Cdot at the current velocities and its
+    // impulse in the warm start.
+    static void allowApproach(ConstraintRow& row, Real cdot, Real dt);
+    static void holdDespiteSoftness(ConstraintRow& row, Real previous);
     LcpStatus solveVelocities(IslandContext& context);
     bool solveWithTree(IslandContext& context);
     bool solveSparse(const WarmStartCache& guess, IslandContext& context);

@@ -25,19 +25,19 @@ void Island::step(Real dt, IslandContext& context) {
     }
     writeRows(context);
     context.report.rows += static_cast<int>(rows_.size());
-    allowApproach(dt);
     // The tree solver and PGS read the rows themselves: A is built only for the dense solve.
-    system_.buildResponses(rows_, bodies_);
+    system_.buildResponses(rows_, bodies_, system_.inverseInertias());
     if (context.settings.solver == SolverKind::Exact && !large(context)) system_.buildMatrix(rows_);
     context.velocityWarmStart.recall(rowKeys_, system_.states(), system_.solution());
-    holdDespiteSoftness();
-    system_.setVelocityRhs(rows_, bodies_);
+    system_.setVelocityRhs(rows_, bodies_, [dt](ConstraintRow& row, Real cdot, Real previous) {
+        allowApproach(row, cdot, dt);
+        holdDespiteSoftness(row, previous);
+    });
     if (solveVelocities(context) != LcpStatus::Solved) ++context.report.failures;
     system_.applyImpulses(rows_, bodies_);
     // Doom caps the speeds after the constraint forces too (§4.9): a whipping chain end must not
     // outrun what one step can follow.
     for (RigidBody& b : bodies_) clampVelocity(b, context.settings.integration);
-    shake_.capture(rows_, ranges_, system_);
 
     // The joint's impulse of this step bounds its friction in the next step, as in Doom.
     const std::span<const Real> lambda = system_.solution();
@@ -68,24 +68,18 @@ void Island::project(IslandContext& context) { projectPositions(context, false);
 // they hold from the first step they are needed. Until the gap C > 0 is closed such a row must
 // not push: it allows approaching by the gap within the step, Cdot ≥ −C/dt. A bounce
 // (restitution target > 0) stays only if the bodies close the gap within this step.
-void Island::allowApproach(Real dt) {
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-        ConstraintRow& r = rows_[i];
-        if (r.lo != 0 || r.frictionSource >= 0 || r.error <= 0) continue;
-        const bool impactThisStep = -rowVelocity(r, bodies_) * dt >= r.error;
-        if (r.target > 0 && impactThisStep) continue;
-        r.target = std::min(r.target > 0 ? Real(0) : r.target, -r.error / dt);
-    }
+void Island::allowApproach(ConstraintRow& r, Real cdot, Real dt) {
+    if (r.lo != 0 || r.frictionSource >= 0 || r.error <= 0) return;
+    const bool impactThisStep = -cdot * dt >= r.error;
+    if (r.target > 0 && impactThisStep) return;
+    r.target = std::min(r.target > 0 ? Real(0) : r.target, -r.error / dt);
 }
 
 // A row with CFM c ends its solve with Cdot = target − c·λ: a resting row leaks c·λ·dt of
 // position every step, which the projection then has to take back (a limit holding a leg up
 // leaked 5.5e-7 rad per step). Asking for target + c·λ_previous instead cancels the leak where
 // the impulse is steady and changes nothing else by more than the CFM's share of the answer.
-void Island::holdDespiteSoftness() {
-    const std::span<const Real> previous = system_.solution();
-    for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i].target += rows_[i].cfm * previous[i];
-}
+void Island::holdDespiteSoftness(ConstraintRow& r, Real previous) { r.target += r.cfm * previous; }
 
 // Warm-started from the rows with the same keys in the previous step (recalled by step()). PGS
 // running out of sweeps is its normal way of stopping, not a failure.
@@ -140,7 +134,7 @@ bool Island::solveSparse(const WarmStartCache& guess, IslandContext& context) {
     std::span<Real> x = system_.solution();
     std::span<LcpRowState> states = system_.states();
     const SparseLcpResult r =
-        sparse_.solve(rows_.all(), system_.responses(), system_.problem(), bodies_, x, states, context.settings.exact.tolerance);
+        sparse_.solve(rows_.all(), system_.responses(), system_.problem(), bodies_, x, states, context.settings.exact);
     if (r.status == LcpStatus::Solved) {
         context.report.residual = std::max(context.report.residual, r.residual);
         return true;
@@ -263,9 +257,13 @@ bool Island::solvePositionsWithTree(IslandContext& context) {
 // The drift is measured without writing the rows (a resting figure has none to close); they are
 // written only for SHAKE to move along. Returns whether it moved the bodies; if not, jointErrors_
 // are those of the current poses.
+//
+// rows_ and the responses in system_ are still those of the velocity solve: SHAKE captures them
+// only when it has a drift to close.
 bool Island::closeDrift(Real dt, IslandContext& context) {
     measureJointErrors(context);
-    if (shake_.drift(jointErrors_, errorRanges_) <= kShakeTolerance) return false;
+    if (ShakeCorrection::drift(rows_, ranges_, jointErrors_, errorRanges_) <= kShakeTolerance) return false;
+    shake_.capture(rows_, ranges_, system_);
     beforeShake_.assign(bodies_.begin(), bodies_.end());
     writeRows(context);
     const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);

@@ -37,6 +37,11 @@ void RowSystem::build(const ConstraintRows& rows, std::span<const RigidBody> bod
 }
 
 void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
+    buildResponses(rows, bodies, inverseInertiasWorld(bodies));
+}
+
+void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const RigidBody> bodies,
+                               std::span<const Mat3> inertia) {
     n_ = static_cast<int>(rows.size());
     const std::size_t n = rows.size();
     response_.resize(n);
@@ -50,7 +55,6 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
     states_.resize(n);
     rowBodies_.resize(n);
 
-    const std::span<const Mat3> inertia = inverseInertiasWorld(bodies);
     for (std::size_t i = 0; i < n; ++i) {
         const ConstraintRow& r = rows[i];
         RowResponse& m = response_[i];
@@ -115,19 +119,6 @@ void holdFrictionAtZero(ConstraintRows& rows, std::span<const JointRowRange> ran
             rows[i].frictionSource = -1;
             rows[i].lo = rows[i].hi = 0;
         }
-}
-
-Real rowVelocity(const ConstraintRow& r, std::span<const RigidBody> bodies) {
-    Real cdot = 0;
-    if (r.bodyA != kWorldBody) {
-        const RigidBody& a = bodies[static_cast<std::size_t>(r.bodyA)];
-        cdot += dot6(r.linearA, r.angularA, a.linearVelocity, a.angularVelocity);
-    }
-    if (r.bodyB != kWorldBody) {
-        const RigidBody& b = bodies[static_cast<std::size_t>(r.bodyB)];
-        cdot += dot6(r.linearB, r.angularB, b.linearVelocity, b.angularVelocity);
-    }
-    return cdot;
 }
 
 void RowSystem::setVelocityRhs(const ConstraintRows& rows, std::span<const RigidBody> bodies) {

@@ -29,7 +29,18 @@ void accumulateResponses(std::span<const ConstraintRow> rows, std::span<const Ro
 void holdFrictionAtZero(ConstraintRows& rows, std::span<const JointRowRange> ranges);
 
 // Cdot of a row at the bodies' current velocities.
-Real rowVelocity(const ConstraintRow& row, std::span<const RigidBody> bodies);
+inline Real rowVelocity(const ConstraintRow& r, std::span<const RigidBody> bodies) {
+    Real cdot = 0;
+    if (r.bodyA != kWorldBody) {
+        const RigidBody& a = bodies[static_cast<std::size_t>(r.bodyA)];
+        cdot += r.linearA.dot(a.linearVelocity) + r.angularA.dot(a.angularVelocity);
+    }
+    if (r.bodyB != kWorldBody) {
+        const RigidBody& b = bodies[static_cast<std::size_t>(r.bodyB)];
+        cdot += r.linearB.dot(b.linearVelocity) + r.angularB.dot(b.angularVelocity);
+    }
+    return cdot;
+}
 
 // Moves a body by a small displacement: its centre by `linear`, its orientation turned by the
 // rotation vector `angular`.
@@ -43,10 +54,25 @@ public:
     // build in two parts: the responses, bounds and sizes (all that applying impulses needs,
     // O(rows)), then A (O(rows²)), which only the dense solvers read.
     void buildResponses(const ConstraintRows& rows, std::span<const RigidBody> bodies);
+    // The same with each body's RigidBody::inverseInertiaWorld given (inverseInertias() after
+    // inverseInertiasWorld(bodies) at the same poses: the rows' writer's).
+    void buildResponses(const ConstraintRows& rows, std::span<const RigidBody> bodies,
+                        std::span<const Mat3> inverseInertiaWorld);
     void buildMatrix(const ConstraintRows& rows);
 
     // b_i = target_i − Cdot_i(current velocities): the velocity problem.
     void setVelocityRhs(const ConstraintRows& rows, std::span<const RigidBody> bodies);
+    // The same, each row's target first changed by retarget(row, Cdot_i, x_i), x_i its impulse
+    // in solution() (the warm start), in the same pass.
+    template <class Retarget>
+    void setVelocityRhs(ConstraintRows& rows, std::span<const RigidBody> bodies, Retarget&& retarget) {
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            ConstraintRow& row = rows[i];
+            const Real cdot = rowVelocity(row, bodies);
+            retarget(row, cdot, x_[i]);
+            b_[i] = row.target - cdot;
+        }
+    }
     // b_i = −error_i: the position problem (J Δq = −C).
     void setPositionRhs(const ConstraintRows& rows);
 
@@ -68,6 +94,8 @@ public:
     // writing or reading many rows at one pose. Valid until the next call of this or of build
     // or buildResponses (which compute it for their own bodies).
     std::span<const Mat3> inverseInertiasWorld(std::span<const RigidBody> bodies);
+    // What the last inverseInertiasWorld computed.
+    std::span<const Mat3> inverseInertias() const { return inverseInertia_; }
 
 private:
     int n_ = 0;

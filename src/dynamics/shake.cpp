@@ -297,12 +297,14 @@ void ShakeCorrection::solveBlock(const Block& block, const std::vector<Real>& k,
     }
 }
 
-Real ShakeCorrection::drift(std::span<const RowError> errors, const std::vector<JointRowRange>& ranges) const {
+Real ShakeCorrection::drift(const ConstraintRows& start, const std::vector<JointRowRange>& startRanges,
+                            std::span<const RowError> errors, const std::vector<JointRowRange>& ranges) {
     Real worst = 0;
-    std::size_t i = 0;
-    for (const JointRowRange& range : ranges)
-        for (int r = 0; r < range.equalityRows; ++r, ++i)
-            worst = std::max(worst, std::abs(errors[static_cast<std::size_t>(range.first + r)].error - start_[i].error));
+    for (std::size_t k = 0; k < ranges.size(); ++k)
+        for (int r = 0; r < ranges[k].equalityRows; ++r) {
+            const Real now = errors[static_cast<std::size_t>(ranges[k].first + r)].error;
+            worst = std::max(worst, std::abs(now - start[static_cast<std::size_t>(startRanges[k].first + r)].error));
+        }
     return worst;
 }
 

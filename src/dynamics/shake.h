@@ -34,10 +34,11 @@ public:
         Real move = 0;   // largest move of any body point (centre move + turn × gyration radius)
     };
 
-    // The largest drift of the captured rows: |error now − error at capture| over the equality
-    // rows, with `errors` measured at the moved poses (writeJointErrors, same joints), as apply
-    // measures it from rows written there.
-    Real drift(std::span<const RowError> errors, const std::vector<JointRowRange>& ranges) const;
+    // The largest drift of the joints since `start` (rows and ranges as capture takes them):
+    // |error now − error at start| over the equality rows, with `errors` measured at the moved
+    // poses (writeJointErrors, same joints), as apply measures it after capture(start).
+    static Real drift(const ConstraintRows& start, const std::vector<JointRowRange>& startRanges,
+                      std::span<const RowError> errors, const std::vector<JointRowRange>& ranges);
 
     // With `rows` written at the moved poses (same joints, so the same equality rows in the
     // same order), one Newton step: moves the bodies and changes their velocities by move / dt.
