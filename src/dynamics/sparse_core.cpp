@@ -5,9 +5,15 @@
 // equations F, the others at their bounds), and the core is solved as a dense boxed LCP with its
 // friction coupling, on its Schur complement
 //     S = A_UU − A_UF A_FF⁻¹ A_FU,     b' = b_U − (A x⁰)_U   (x⁰: the answer with the core at 0),
-// by the pivoting solver, which always finishes. The free rows then follow the core's impulses
-// and the whole answer is checked like any trial's: the core is exact, the guess outside it may
-// not be, and then the caller falls back as before.
+// by the pivoting solver, which always finishes (with the caller's settings: friction boxes
+// frozen first, which settles a tumbling figure's coupled core in a few plain passes). The free
+// rows then follow the core's impulses and the whole answer is checked like any trial's: the core
+// is exact, the guess outside it may not be. The rows found wrong outside join the core and it is
+// solved again (sparse_lcp.cpp), until the answer holds or the core is too large; then the caller
+// falls back to its other solvers.
+//
+// Returns the rows the check found wrong (0: x is the answer), or −1 when the core is too large
+// or could not be solved.
 
 #include "sparse_lcp.h"
 
@@ -15,17 +21,18 @@ namespace af {
 
 namespace {
 
-// A larger core's dense pivoting costs more than the caller's own fallback: the bench ragdoll's
-// first 100 steps took 856M instructions with cores up to 16, 32 or 40 rows, 972M up to 64.
-constexpr std::size_t kMaxCore = 32;
+// A larger core's dense pivoting costs more than the caller's own fallback. The bench ragdoll's
+// first 250 steps (two trials first, frozen boxes in the core): 805M instructions and 11 fallbacks
+// with cores up to 64 rows, 796M and 4 up to 96, 843M and 1 up to 128.
+constexpr std::size_t kMaxCore = 96;
 
 bool clampedState(LcpRowState s) { return s == LcpRowState::AtLower || s == LcpRowState::AtUpper; }
 
 }  // namespace
 
-bool SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
-                                const LcpProblem& problem, std::span<Real> x, std::span<LcpRowState> states,
-                                Real wTolerance, Real tolerance, SparseLcpResult& result) {
+int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                               const LcpProblem& problem, std::span<Real> x, std::span<LcpRowState> states,
+                               Real wTolerance, const LcpExactSettings& settings, SparseLcpResult& result) {
     const std::size_t n = rows.size();
     inCore_.assign(switched_.begin(), switched_.end());
     for (std::size_t i = 0; i < n; ++i)
@@ -42,7 +49,7 @@ bool SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<c
             core_.push_back(static_cast<int>(i));
         }
     const std::size_t m = core_.size();
-    if (m == 0 || m > kMaxCore) return false;
+    if (m == 0 || m > kMaxCore) return -1;
     result.coreRows = static_cast<int>(m);
 
     // Outside the core: free rows factorised, the others at their bounds (a friction row outside
@@ -67,7 +74,7 @@ bool SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<c
             x[i] = states[i] == LcpRowState::AtLower ? lo : hi;
         }
     ++result.factorisations;
-    if (!factor_.factor(rows, responses, problem.cfm, free_)) return false;
+    if (!factor_.factor(rows, responses, problem.cfm, free_)) return -1;
     solveFree(rows, responses, problem.b, x, x);
 
     // b' through the bodies; S as A_UU through the bodies less the free rows' share, each entry
@@ -119,10 +126,8 @@ bool SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<c
     core.findex = coreFindex_;
     core.mu = coreMu_;
     core.cfm = coreCfm_;
-    LcpExactSettings settings;
-    settings.tolerance = tolerance;
     coreSolver_.setSettings(settings);
-    if (coreSolver_.solve(core, coreX_, coreStates_).status != LcpStatus::Solved) return false;
+    if (coreSolver_.solve(core, coreX_, coreStates_).status != LcpStatus::Solved) return -1;
 
     // The free rows follow: x_F += A_FF⁻¹ (0 − A_FU x_U).
     for (std::size_t i = 0; i < n; ++i) use_[i] = inCore_[i];
@@ -134,8 +139,7 @@ bool SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<c
     solveFree(rows, responses, zeros_, x, rhs_);
     for (std::size_t i = 0; i < n; ++i)
         if (free_[i]) x[i] += rhs_[i];
-    int firstWrong = -1;
-    return check(rows, responses, problem, x, states, wTolerance, tolerance, firstWrong) == 0;
+    return check(rows, responses, problem, x, states, wTolerance, settings.tolerance);
 }
 
 }  // namespace af

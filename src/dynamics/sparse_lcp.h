@@ -37,10 +37,12 @@ class SparseLcpSolver {
 public:
     // Solves the problem's b, bounds, friction coupling and CFM (problem.a is not read) for the
     // rows, whose responses M⁻¹Jᵀ are given. x and states carry the guess in (Unknown states are
-    // guessed from the bounds) and the answer out; on failure they hold the last trial.
+    // guessed from the bounds) and the answer out; on failure they hold the last trial. The
+    // settings are the pivoting solver's: their tolerance is the answer's, and the dense core is
+    // solved with them.
     SparseLcpResult solve(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                           const LcpProblem& problem, std::span<const RigidBody> bodies, std::span<Real> x,
-                          std::span<LcpRowState> states, Real tolerance);
+                          std::span<LcpRowState> states, const LcpExactSettings& settings);
 
 private:
     bool solvePattern(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
@@ -50,10 +52,11 @@ private:
                    std::span<const Real> b, std::span<const Real> x, std::span<Real> out);
     bool solveSmall(std::size_t k);
     int check(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
-              std::span<const Real> x, std::span<const LcpRowState> states, Real wTolerance, Real tolerance, int& firstWrong);
+              std::span<const Real> x, std::span<const LcpRowState> states, Real wTolerance, Real tolerance);
     SparseLcpResult& finish(std::span<const Real> x, SparseLcpResult& result) const;
-    bool solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
-                   std::span<Real> x, std::span<LcpRowState> states, Real wTolerance, Real tolerance, SparseLcpResult& result);
+    int solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
+                  std::span<Real> x, std::span<LcpRowState> states, Real wTolerance, const LcpExactSettings& settings,
+                  SparseLcpResult& result);
     int source(const LcpProblem& problem, std::size_t i) const;
     bool sliding(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const;
     void bounds(const LcpProblem& problem, std::span<const Real> x);

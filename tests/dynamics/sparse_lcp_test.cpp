@@ -4,6 +4,7 @@
 // second path to the world. Also that a held guess costs one trial, and that rows the
 // factorisation cannot take are refused rather than solved wrongly.
 
+#include "af/dynamics/world.h"
 #include "dynamics/sparse_lcp.h"
 #include "row_scene_util.h"
 
@@ -13,6 +14,9 @@ namespace af {
 namespace {
 
 using namespace test;
+
+// The pivoting solver's settings as a world uses them (tolerance, frozen friction boxes).
+const LcpExactSettings kSettings = WorldSettings{}.exact;
 
 // What the sparse solver is given: the rows (friction held at 0 for the position problem, as
 // World does), their responses and the problem's right-hand side and bounds.
@@ -143,7 +147,7 @@ SparseRun solveSparse(const Scene& scene, bool position, std::span<const LcpRowS
     run.states.assign(in.rows.size(), LcpRowState::Unknown);
     std::copy(guess.begin(), guess.end(), run.states.begin());
     SparseLcpSolver solver;
-    run.result = solver.solve(in.rows.all(), in.responses, in.system.problem(), scene.bodies, run.lambda, run.states, 1e-10);
+    run.result = solver.solve(in.rows.all(), in.responses, in.system.problem(), scene.bodies, run.lambda, run.states, kSettings);
     return run;
 }
 
@@ -281,7 +285,7 @@ TEST(SparseLcp, DependentRowsWithoutCfmAreRefused) {
     std::vector<Real> x(3, 0);
     std::vector<LcpRowState> states(3, LcpRowState::Unknown);
     SparseLcpSolver solver;
-    EXPECT_EQ(solver.solve(rows.all(), responses, system.problem(), bodies, x, states, 1e-10).status, LcpStatus::Unsatisfiable);
+    EXPECT_EQ(solver.solve(rows.all(), responses, system.problem(), bodies, x, states, kSettings).status, LcpStatus::Unsatisfiable);
 }
 
 }  // namespace
