@@ -37,6 +37,7 @@ void Island::gather(std::span<const int> bodyIds, std::span<const int> jointIds,
             joints_.push_back(std::move(joint));
         }
         treeReady_ = false;
+        restRowsHeld_ = false;
     } else {
         for (std::size_t k = 0; k < jointIds.size(); ++k)
             joints_[k].lastImpulse = world.joints[static_cast<std::size_t>(jointIds[k])].lastImpulse;
@@ -61,20 +62,28 @@ void Island::scatter(std::vector<RigidBody>& worldBodies, std::vector<Joint>& wo
 
 // The extra source sees the world's bodies (with this island's current poses written back);
 // its rows that touch this island are kept, renumbered.
-void Island::writeRows(IslandContext& context) {
+void Island::writeRows(IslandContext& context, bool reuseRestRows) {
     rows_.clear();
     ranges_.clear();
     rowKeys_.clear();
-    const std::span<const Mat3> inertia = system_.inverseInertiasWorld(bodies_);
+    if (reuseRestRows && restRowsHold(context)) {
+        std::swap(rows_, restRows_);
+        std::swap(ranges_, restRanges_);
+        rowInertia_ = restInertia_;
+        restRowsHeld_ = false;
+    } else {
+        rowInertia_ = system_.inverseInertiasWorld(bodies_);
+        for (const Joint& joint : joints_)
+            ranges_.push_back(writeJointRows(joint, bodies_, rowInertia_, context.settings.rows, rows_));
+    }
     for (std::size_t k = 0; k < joints_.size(); ++k) {
-        const JointRowRange range = writeJointRows(joints_[k], bodies_, inertia, context.settings.rows, rows_);
-        ranges_.push_back(range);
+        const JointRowRange& range = ranges_[k];
         const std::uint64_t joint = kJointKeyTag | (static_cast<std::uint64_t>(jointIds_[k]) << 8);
         for (int r = 0; r < range.equalityRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(r));
         for (int r = 0; r < range.limitRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(64 + r));
         for (int r = 0; r < range.frictionRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(128 + r));
     }
-    writeContactRows(points_, bodies_, inertia, context.settings.contact, rows_, rowKeys_);
+    writeContactRows(points_, bodies_, rowInertia_, context.settings.contact, rows_, rowKeys_);
     if (!context.extraRows) return;
     for (std::size_t i = 0; i < bodyIds_.size(); ++i)
         context.worldBodies[static_cast<std::size_t>(bodyIds_[i])] = bodies_[i];
@@ -97,7 +106,53 @@ void Island::writeRows(IslandContext& context) {
 void Island::measureJointErrors(const IslandContext& context) {
     jointErrors_.clear();
     errorRanges_.clear();
-    for (const Joint& joint : joints_) errorRanges_.push_back(writeJointErrors(joint, bodies_, context.settings.rows, jointErrors_));
+    if (!restedLastStep_) {
+        restRowsHeld_ = false;
+        for (const Joint& joint : joints_)
+            errorRanges_.push_back(writeJointErrors(joint, bodies_, context.settings.rows, jointErrors_));
+        return;
+    }
+    restRows_.clear();
+    restRanges_.clear();
+    restInertia_.resize(bodies_.size());
+    restPoses_.resize(bodies_.size());
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+        const RigidBody& body = bodies_[b];
+        restInertia_[b] = body.inverseInertiaWorld();
+        restPoses_[b] = {body.position, body.orientation, body.inverseMass, body.inverseInertia};
+    }
+    restImpulses_.resize(joints_.size());
+    for (std::size_t k = 0; k < joints_.size(); ++k) {
+        restRanges_.push_back(writeJointRows(joints_[k], bodies_, restInertia_, context.settings.rows, restRows_));
+        restImpulses_[k] = joints_[k].lastImpulse;
+    }
+    restSettings_ = context.settings.rows;
+    restRowsHeld_ = true;
+    for (std::size_t i = 0; i < restRows_.size(); ++i)
+        jointErrors_.push_back({restRows_[i].error, restRows_[i].lo, restRows_[i].hi});
+    errorRanges_.assign(restRanges_.begin(), restRanges_.end());
+}
+
+// The joint rows depend on the bodies' poses, masses and inertias, the joints' impulses (the
+// friction bounds) and the settings; equal bits give equal rows.
+bool Island::restRowsHold(const IslandContext& context) const {
+    static_assert(sizeof(JointRowSettings) == 5 * sizeof(Real), "compare every setting");
+    const JointRowSettings& s = context.settings.rows;
+    if (!restRowsHeld_ || restPoses_.size() != bodies_.size() || restImpulses_.size() != joints_.size() ||
+        s.jointCfm != restSettings_.jointCfm || s.limitCfm != restSettings_.limitCfm ||
+        s.frictionCfm != restSettings_.frictionCfm || s.limitMargin != restSettings_.limitMargin ||
+        s.springLimitMargin != restSettings_.springLimitMargin)
+        return false;
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+        const RigidBody& body = bodies_[b];
+        const RestPose& p = restPoses_[b];
+        if (body.position != p.position || body.orientation.coeffs() != p.orientation.coeffs() ||
+            body.inverseMass != p.inverseMass || body.inverseInertia != p.inverseInertia)
+            return false;
+    }
+    for (std::size_t k = 0; k < joints_.size(); ++k)
+        if (joints_[k].lastImpulse != restImpulses_[k]) return false;
+    return true;
 }
 
 // The contact rows' errors are those writeContactRows gives their normal rows (the others,

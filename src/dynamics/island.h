@@ -63,9 +63,14 @@ public:
     const WarmStartCache& velocityWarmStart() const { return velocityCache_; }
 
 private:
-    void writeRows(IslandContext& context);
-    // The joint rows' errors at the bodies' poses (jointErrors_, errorRanges_), without the rows.
+    // reuseRestRows: take the joint rows measureJointErrors wrote at the end of the last step if
+    // they still hold (a step's start).
+    void writeRows(IslandContext& context, bool reuseRestRows = false);
+    // The joint rows' errors at the bodies' poses (jointErrors_, errorRanges_). Without the rows,
+    // unless the last step ended at rest: then this step likely does too, and the next one
+    // starts from these poses, so the joint rows are written whole (restRows_) for it to take.
     void measureJointErrors(const IslandContext& context);
+    bool restRowsHold(const IslandContext& context) const;
     // largestViolation() of the rows writeRows would write now, from jointErrors_ (measured at
     // the current poses) and the contact points, without writing them. Not for an extra source.
     Real measuredViolation(const IslandContext& context) const;
@@ -113,6 +118,22 @@ private:
     std::vector<int> extraIndex_;
     std::vector<RowError> jointErrors_;
     std::vector<JointRowRange> errorRanges_;
+    std::span<const Mat3> rowInertia_;  // the bodies' world inverse inertias rows_ were written with
+    // Joint rows written at the end of a resting step, and what they were written from.
+    struct RestPose {
+        Vec3 position;
+        Quat orientation;
+        Real inverseMass;
+        Mat3 inverseInertia;
+    };
+    ConstraintRows restRows_;
+    std::vector<JointRowRange> restRanges_;
+    std::vector<Mat3> restInertia_;
+    std::vector<RestPose> restPoses_;
+    std::vector<Real> restImpulses_;
+    JointRowSettings restSettings_;
+    bool restRowsHeld_ = false;
+    bool restedLastStep_ = false;  // the last step neither moved by SHAKE nor projected
     RowSystem system_;
     LcpExactSolver exact_;
     LcpExactSolver exactPosition_;

@@ -23,10 +23,10 @@ void Island::step(Real dt, IslandContext& context) {
         pgs_.setSettings(context.settings.pgs);
         settingsSet_ = true;
     }
-    writeRows(context);
+    writeRows(context, true);
     context.report.rows += static_cast<int>(rows_.size());
     // The tree solver and PGS read the rows themselves: A is built only for the dense solve.
-    system_.buildResponses(rows_, bodies_, system_.inverseInertias());
+    system_.buildResponses(rows_, bodies_, rowInertia_);
     if (context.settings.solver == SolverKind::Exact && !large(context)) system_.buildMatrix(rows_);
     context.velocityWarmStart.recall(rowKeys_, system_.states(), system_.solution());
     system_.setVelocityRhs(rows_, bodies_, [dt](ConstraintRow& row, Real cdot, Real previous) {
@@ -58,8 +58,10 @@ void Island::step(Real dt, IslandContext& context) {
     // SHAKE's velocity change closes an O(dt²) drift. After PGS the joints hold only as far as
     // its sweeps got, the drift is O(dt), and giving it back as velocity pumps energy (a
     // resting ragdoll's head kept spinning at 5 rad/s): the projection alone removes it.
+    const int passes = context.report.projectionPasses;
     const bool jointErrorsAtPoses = !iterative(context) && !closeDrift(dt, context);
     projectPositions(context, jointErrorsAtPoses);
+    restedLastStep_ = jointErrorsAtPoses && context.report.projectionPasses == passes;
 }
 
 void Island::project(IslandContext& context) { projectPositions(context, false); }

@@ -54,8 +54,8 @@ public:
     // build in two parts: the responses, bounds and sizes (all that applying impulses needs,
     // O(rows)), then A (O(rows²)), which only the dense solvers read.
     void buildResponses(const ConstraintRows& rows, std::span<const RigidBody> bodies);
-    // The same with each body's RigidBody::inverseInertiaWorld given (inverseInertias() after
-    // inverseInertiasWorld(bodies) at the same poses: the rows' writer's).
+    // The same with each body's RigidBody::inverseInertiaWorld given (at the same poses: those
+    // the rows were written with).
     void buildResponses(const ConstraintRows& rows, std::span<const RigidBody> bodies,
                         std::span<const Mat3> inverseInertiaWorld);
     void buildMatrix(const ConstraintRows& rows);
@@ -94,8 +94,6 @@ public:
     // writing or reading many rows at one pose. Valid until the next call of this or of build
     // or buildResponses (which compute it for their own bodies).
     std::span<const Mat3> inverseInertiasWorld(std::span<const RigidBody> bodies);
-    // What the last inverseInertiasWorld computed.
-    std::span<const Mat3> inverseInertias() const { return inverseInertia_; }
 
 private:
     int n_ = 0;
