@@ -128,8 +128,8 @@ void Island::measureJointErrors(const IslandContext& context) {
     }
     restSettings_ = context.settings.rows;
     restRowsHeld_ = true;
-    for (std::size_t i = 0; i < restRows_.size(); ++i)
-        jointErrors_.push_back({restRows_[i].error, restRows_[i].lo, restRows_[i].hi});
+    jointErrors_.resize(restRows_.size());
+    for (std::size_t i = 0; i < restRows_.size(); ++i) jointErrors_[i] = {restRows_[i].error, restRows_[i].lo, restRows_[i].hi};
     errorRanges_.assign(restRanges_.begin(), restRanges_.end());
 }
 

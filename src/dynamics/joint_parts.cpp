@@ -25,19 +25,19 @@ namespace af::joint_detail {
 
 namespace {
 
-// Everything but the inertia.
-Side kinematicSide(int index, std::span<const RigidBody> bodies) {
-    Side s;
-    s.index = index;
-    if (index == kWorldBody) return s;
+// Everything but the inertia, which is `inverseInertia` (every member set once: a side is made
+// twice for every joint every time its rows are written or measured).
+Side kinematicSide(int index, std::span<const RigidBody> bodies, const Mat3& inverseInertia = Mat3::Zero()) {
+    if (index == kWorldBody) return Side{};
     const RigidBody& body = bodies[static_cast<std::size_t>(index)];
-    s.position = body.position;
-    s.orientation = body.orientation;
-    s.rotation = body.rotation();
-    s.linearVelocity = body.linearVelocity;
-    s.angularVelocity = body.angularVelocity;
-    s.inverseMass = body.inverseMass;
-    return s;
+    return Side{index,
+                body.position,
+                body.orientation,
+                body.rotation(),
+                body.linearVelocity,
+                body.angularVelocity,
+                body.inverseMass,
+                inverseInertia};
 }
 
 }  // namespace
@@ -50,9 +50,8 @@ Side sideOf(int index, std::span<const RigidBody> bodies) {
 }
 
 Side sideOf(int index, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld) {
-    Side s = kinematicSide(index, bodies);
-    if (index != kWorldBody) s.inverseInertia = inverseInertiaWorld[static_cast<std::size_t>(index)];
-    return s;
+    if (index == kWorldBody) return Side{};
+    return kinematicSide(index, bodies, inverseInertiaWorld[static_cast<std::size_t>(index)]);
 }
 
 Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies) {

@@ -13,9 +13,11 @@ void WarmStartCache::remember(std::span<const std::uint64_t> keys, std::span<con
 
 // The same keys in the same order as at the last sort (a resting figure): the index still holds.
 void WarmStartCache::sort() {
-    bool sameKeys = byKey_.size() == entries_.size();
-    for (std::size_t i = 0; i < byKey_.size() && sameKeys; ++i) sameKeys = entries_[byKey_[i].second].key == byKey_[i].first;
+    const bool sameKeys = std::equal(entries_.begin(), entries_.end(), indexedKeys_.begin(), indexedKeys_.end(),
+                                     [](const Entry& e, std::uint64_t key) { return e.key == key; });
     if (sameKeys) return;
+    indexedKeys_.resize(entries_.size());
+    for (std::size_t i = 0; i < entries_.size(); ++i) indexedKeys_[i] = entries_[i].key;
     byKey_.resize(entries_.size());
     for (std::size_t i = 0; i < entries_.size(); ++i) byKey_[i] = {entries_[i].key, i};
     std::sort(byKey_.begin(), byKey_.end());

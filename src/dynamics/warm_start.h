@@ -38,6 +38,7 @@ private:
     };
     std::vector<Entry> entries_;                               // in the order remembered
     std::vector<std::pair<std::uint64_t, std::size_t>> byKey_;  // (key, index into entries_), sorted
+    std::vector<std::uint64_t> indexedKeys_;                    // the entries' keys byKey_ was built from
 };
 
 }  // namespace af
