@@ -98,13 +98,34 @@ bool CollisionWorld::mayCollideWithStatic(int body, int staticShape) const {
     return f.collidesWithStatic && !s.removed && (f.clipMask & s.contents) != 0;
 }
 
+Manifold CollisionWorld::queryPair(int a, int b, const RigidPose& poseA, const RigidPose& poseB, const Vec3& centreA,
+                                   const Vec3& centreB, Real pairMargin) const {
+    const Body& bodyA = bodies_[static_cast<std::size_t>(a)];
+    const Body& bodyB = bodies_[static_cast<std::size_t>(b)];
+    // Bounding spheres farther apart than the margin: the query would find nothing.
+    const Real reachBoth = (bodyA.radius + bodyB.radius + pairMargin) * (1 + 1e-12);
+    if ((centreA - centreB).squaredNorm() > reachBoth * reachBoth) return {};
+    return collide(bodyA.shape, poseA, bodyB.shape, poseB, pairMargin);
+}
+
+Manifold CollisionWorld::queryStatic(int a, int s, const RigidPose& pose, const Vec3& centre, const Aabb& bounds,
+                                     Real staticMargin) const {
+    const Static& shape = statics_[static_cast<std::size_t>(s)];
+    const Body& body = bodies_[static_cast<std::size_t>(a)];
+    if (shape.isPlane) {
+        if (heightAbove(body.shape, pose, centre, body.radius, shape.plane) > staticMargin) return {};
+        return collideWithPlane(body.shape.polytope(), pose, shape.plane, staticMargin);
+    }
+    if (!bounds.overlaps(shape.bounds)) return {};
+    return collide(body.shape, pose, shape.shape, RigidPose{}, staticMargin);
+}
+
 void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<const Vec3> moves,
                                   std::span<const Real> reach, Real margin, std::span<const std::uint8_t> awake,
                                   std::vector<BodyContact>& out) {
     out.clear();
     auto isAwake = [&](int i) { return awake.empty() || awake[static_cast<std::size_t>(i)] != 0; };
     auto at = [](const auto& items, int i) -> decltype(auto) { return items[static_cast<std::size_t>(i)]; };
-    auto pose = [&](int i) -> const RigidPose& { return at(poses, i); };
 
     // Each box holds everything the body can reach in the step, so a pair's boxes overlap
     // whenever the pair can get within its margin.
@@ -121,10 +142,7 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
         if (!isAwake(a) && !isAwake(b)) continue;
         if (!mayCollide(a, b)) continue;
         const Real pairMargin = margin + at(reach, a) + at(reach, b) + (at(moves, a) - at(moves, b)).norm();
-        // Bounding spheres farther apart than the margin: the query would find nothing.
-        const Real reachBoth = (at(bodies_, a).radius + at(bodies_, b).radius + pairMargin) * (1 + 1e-12);
-        if ((at(centres_, a) - at(centres_, b)).squaredNorm() > reachBoth * reachBoth) continue;
-        contact.manifold = collide(at(bodies_, a).shape, pose(a), at(bodies_, b).shape, pose(b), pairMargin);
+        contact.manifold = queryPair(a, b, at(poses, a), at(poses, b), at(centres_, a), at(centres_, b), pairMargin);
         if (contact.manifold.empty()) continue;
         contact.bodyA = a;
         contact.bodyB = b;
@@ -134,17 +152,9 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
     for (int a = 0; a < static_cast<int>(bodies_.size()); ++a) {
         if (!isAwake(a)) continue;
         for (int s = 0; s < static_cast<int>(statics_.size()); ++s) {
-            const Static& shape = statics_[static_cast<std::size_t>(s)];
             if (!mayCollideWithStatic(a, s)) continue;
             const Real staticMargin = margin + at(reach, a) + at(moves, a).norm();
-            if (shape.isPlane) {
-                const Body& body = at(bodies_, a);
-                if (heightAbove(body.shape, pose(a), at(centres_, a), body.radius, shape.plane) > staticMargin) continue;
-                contact.manifold = collideWithPlane(bodyShape(a), pose(a), shape.plane, staticMargin);
-            } else {
-                if (!boxes_[static_cast<std::size_t>(a)].overlaps(shape.bounds)) continue;
-                contact.manifold = collide(at(bodies_, a).shape, pose(a), shape.shape, RigidPose{}, staticMargin);
-            }
+            contact.manifold = queryStatic(a, s, at(poses, a), at(centres_, a), at(boxes_, a), staticMargin);
             if (contact.manifold.empty()) continue;
             contact.bodyA = a;
             contact.bodyB = kStaticWorld;
@@ -152,6 +162,30 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
             out.push_back(contact);
         }
     }
+}
+
+void CollisionWorld::findContactsAgain(std::span<const RigidPose> poses, Real margin,
+                                       std::vector<BodyContact>& contacts) const {
+    auto placed = [&](int i) {
+        const Body& body = bodies_[static_cast<std::size_t>(i)];
+        const RigidPose& pose = poses[static_cast<std::size_t>(i)];
+        return std::pair{pose.apply(body.centre), worldBounds(body.shape, pose, margin)};
+    };
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+        BodyContact& c = contacts[k];
+        const auto [centreA, boundsA] = placed(c.bodyA);
+        const RigidPose& poseA = poses[static_cast<std::size_t>(c.bodyA)];
+        if (c.bodyB == kStaticWorld) {
+            c.manifold = queryStatic(c.bodyA, c.staticShape, poseA, centreA, boundsA, margin);
+        } else {
+            const RigidPose& poseB = poses[static_cast<std::size_t>(c.bodyB)];
+            c.manifold = queryPair(c.bodyA, c.bodyB, poseA, poseB, centreA, poseB.apply(bodies_[static_cast<std::size_t>(c.bodyB)].centre),
+                                   margin);
+        }
+        if (!c.manifold.empty()) contacts[kept++] = c;
+    }
+    contacts.resize(kept);
 }
 
 }  // namespace af

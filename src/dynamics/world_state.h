@@ -72,6 +72,7 @@ struct World::State {
     template <class Run>
     void forEachIsland(Run run);
     void settleNewContacts();
+    bool posesMovedLessThan(Real distance);
 };
 
 }  // namespace af

@@ -89,6 +89,12 @@ public:
     void findContacts(std::span<const RigidPose> poses, std::span<const Vec3> moves, std::span<const Real> reach,
                       Real margin,
                       std::span<const std::uint8_t> awake, std::vector<BodyContact>& out);
+    // The pairs of `contacts` (a findContacts answer) queried again at `poses` within `margin`, none
+    // of them moving; those no longer within it are dropped, the order kept. This is findContacts'
+    // answer for those poses and margin (no moves or reach) whenever no other pair can have come
+    // within the margin since `contacts` were found: the caller's to know, e.g. when every awake
+    // body moved less than half the margin the contacts were found with (asleep ones not at all).
+    void findContactsAgain(std::span<const RigidPose> poses, Real margin, std::vector<BodyContact>& contacts) const;
 
 private:
     // Shapes are prepared once for the narrowphase (ConvexShape), which halves a query's cost.
@@ -107,6 +113,12 @@ private:
         ContentsMask contents = 0;
         bool removed = false;
     };
+
+    Manifold queryPair(int a, int b, const RigidPose& poseA, const RigidPose& poseB, const Vec3& centreA,
+                       const Vec3& centreB, Real pairMargin) const;
+    // bounds: the body's box grown by the margin (for static brushes).
+    Manifold queryStatic(int a, int s, const RigidPose& pose, const Vec3& centre, const Aabb& bounds,
+                         Real staticMargin) const;
 
     CollisionSettings settings_;
     std::vector<Body> bodies_;
