@@ -42,6 +42,21 @@ inline Real rowVelocity(const ConstraintRow& r, std::span<const RigidBody> bodie
     return cdot;
 }
 
+// A_ij without CFM: row i's velocity per unit impulse of row j (response mj), through the bodies
+// the two rows share.
+inline Real rowCoupling(const ConstraintRow& ri, const ConstraintRow& rj, const RowResponse& mj) {
+    Real v = 0;
+    if (ri.bodyA != kWorldBody) {
+        if (ri.bodyA == rj.bodyA) v += ri.linearA.dot(mj.linearA) + ri.angularA.dot(mj.angularA);
+        if (ri.bodyA == rj.bodyB) v += ri.linearA.dot(mj.linearB) + ri.angularA.dot(mj.angularB);
+    }
+    if (ri.bodyB != kWorldBody) {
+        if (ri.bodyB == rj.bodyA) v += ri.linearB.dot(mj.linearA) + ri.angularB.dot(mj.angularA);
+        if (ri.bodyB == rj.bodyB) v += ri.linearB.dot(mj.linearB) + ri.angularB.dot(mj.angularB);
+    }
+    return v;
+}
+
 // Moves a body by a small displacement: its centre by `linear`, its orientation turned by the
 // rotation vector `angular`.
 void displaceBody(RigidBody& body, const Vec3& linear, const Vec3& angular);

@@ -17,6 +17,8 @@
 
 #include "sparse_lcp.h"
 
+#include <Eigen/Core>
+
 namespace af {
 
 namespace {
@@ -77,8 +79,8 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     if (!factor_.factor(rows, responses, problem.cfm, free_)) return -1;
     solveFree(rows, responses, problem.b, x, x);
 
-    // b' through the bodies; S as A_UU through the bodies less the free rows' share, each entry
-    // a product of two sparse forward solves.
+    // b' through the bodies; S = A_UU − Wᵀ D⁻¹ W with W = L⁻¹ A_FU, the core rows' columns
+    // forward-solved (sparse: each touches only its path to the root), one dense product.
     velocityChange(rows, responses, x, {});
     coreB_.resize(m);
     for (std::size_t u = 0; u < m; ++u) coreB_[u] = problem.b[static_cast<std::size_t>(core_[u])] - along(rows[static_cast<std::size_t>(core_[u])]);
@@ -86,23 +88,29 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     const std::size_t groups = static_cast<std::size_t>(factor_.groups());
     paths_.resize(m * vars);
     reached_.resize(m * groups);
-    auto path = [&](std::size_t u) { return std::span<Real>(&paths_[u * vars], vars); };
-    auto reached = [&](std::size_t u) { return std::span<std::uint8_t>(&reached_[u * groups], groups); };
     for (std::size_t u = 0; u < m; ++u) {
-        factor_.column(core_[u], rows, responses, path(u), reached(u));
-        factor_.forward(path(u), reached(u));
+        const std::span<Real> path(&paths_[u * vars], vars);
+        const std::span<std::uint8_t> reached(&reached_[u * groups], groups);
+        factor_.column(core_[u], rows, responses, path, reached);
+        factor_.forward(path, reached);
     }
-    zeros_.assign(n, 0);
+    inversePivots_.resize(vars);
+    factor_.inversePivots(inversePivots_);
+    scaledPaths_.resize(m * vars);
+    using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+    using Vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
+    const Eigen::Map<const Matrix> w(paths_.data(), static_cast<Eigen::Index>(vars), static_cast<Eigen::Index>(m));
+    Eigen::Map<Matrix> scaled(scaledPaths_.data(), static_cast<Eigen::Index>(vars), static_cast<Eigen::Index>(m));
+    scaled.noalias() = Eigen::Map<const Vector>(inversePivots_.data(), static_cast<Eigen::Index>(vars)).asDiagonal() * w;
     coreA_.resize(m * m);
+    Eigen::Map<Matrix> s(coreA_.data(), static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+    s.noalias() = -w.transpose() * scaled;
     for (std::size_t v = 0; v < m; ++v) {
         const std::size_t column = static_cast<std::size_t>(core_[v]);
-        zeros_[column] = 1;
-        velocityChange(rows, responses, zeros_, {});
-        zeros_[column] = 0;
         for (std::size_t u = 0; u < m; ++u)
-            coreA_[u * m + v] =
-                along(rows[static_cast<std::size_t>(core_[u])]) - factor_.scaledDot(path(u), reached(u), path(v), reached(v));
+            coreA_[v * m + u] += rowCoupling(rows[static_cast<std::size_t>(core_[u])], rows[column], responses[column]);
     }
+    zeros_.assign(n, 0);
     coreLo_.resize(m);
     coreHi_.resize(m);
     coreFindex_.resize(m);

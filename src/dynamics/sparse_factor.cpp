@@ -398,6 +398,13 @@ void SparseRowFactor::forward(std::span<Real> y, std::span<std::uint8_t> active)
     }
 }
 
+void SparseRowFactor::inversePivots(std::span<Real> out) const {
+    for (std::size_t g = 0; g < groupKeys_.size(); ++g) {
+        const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
+        for (int j = 0; j < size_[g]; ++j) out[static_cast<std::size_t>(varStart_[g] + j)] = 1 / panel[j * (panelHeight_[g] + 1)];
+    }
+}
+
 Real SparseRowFactor::scaledDot(std::span<const Real> u, std::span<const std::uint8_t> uActive, std::span<const Real> v,
                                 std::span<const std::uint8_t> vActive) const {
     Real sum = 0;

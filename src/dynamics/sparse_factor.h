@@ -62,6 +62,8 @@ public:
     void unit(int row, std::span<Real> y, std::span<std::uint8_t> active) const;
     // y ← L⁻¹ y over the flagged groups, flagging those it reaches.
     void forward(std::span<Real> y, std::span<std::uint8_t> active) const;
+    // D⁻¹ per variable.
+    void inversePivots(std::span<Real> out) const;
     // uᵀ D⁻¹ v over the groups flagged in both.
     Real scaledDot(std::span<const Real> u, std::span<const std::uint8_t> uActive, std::span<const Real> v,
                    std::span<const std::uint8_t> vActive) const;
