@@ -118,7 +118,9 @@ private:
     std::vector<int> extraIndex_;
     std::vector<RowError> jointErrors_;
     std::vector<JointRowRange> errorRanges_;
-    std::span<const Mat3> rowInertia_;  // the bodies' world inverse inertias rows_ were written with
+    // The bodies' world inverse inertias rows_ were written with (in system_ or restInertia_):
+    // valid until the next writeRows, measureJointErrors or buildResponses.
+    std::span<const Mat3> rowInertia_;
     // Joint rows written at the end of a resting step, and what they were written from.
     struct RestPose {
         Vec3 position;
