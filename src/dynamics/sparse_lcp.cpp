@@ -106,8 +106,10 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     angular_.resize(bodies.size());
 
     Real bScale = 1;
+    bool guessComplete = true;
     for (std::size_t i = 0; i < n; ++i) {
         bScale = std::max(bScale, std::abs(problem.b[i]));
+        guessComplete = guessComplete && states[i] != LcpRowState::Unknown && states[i] != LcpRowState::Failed;
         const bool lower = std::isfinite(problem.lo[i]) || source(problem, i) >= 0;
         const bool upper = std::isfinite(problem.hi[i]) || source(problem, i) >= 0;
         if (!lower && !upper) {
@@ -119,11 +121,20 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     }
     const Real wTolerance = settings.tolerance * bScale;
 
+    // A figure at rest meets the same problem as in its last step, up to rounding: the last
+    // impulses are still the answer within the tolerance, and nothing needs factorising.
+    if (guessComplete && guessHolds(rows, responses, problem, x, states, wTolerance, settings.tolerance)) {
+        const Real gap = boundGap_;
+        finish(x, states, result);
+        boundGap_ = gap;  // the reference stays the last solve's
+        return result;
+    }
+
     switched_.assign(n, 0);
     for (int trial = 1; trial <= kMaxTrials; ++trial) {
         result.trials = trial;
         if (!solvePattern(rows, responses, problem, x, states, result)) return result;
-        if (check(rows, responses, problem, x, states, wTolerance, settings.tolerance) == 0) return finish(x, result);
+        if (check(rows, responses, problem, x, states, wTolerance, settings.tolerance) == 0) return finish(x, states, result);
         for (std::size_t i = 0; i < n; ++i) {
             if (next_[i] == states[i]) continue;
             states[i] = next_[i];
@@ -142,7 +153,7 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     // The core, grown by the rows its answer finds wrong outside it, until it holds or is too large.
     for (int round = 0; round < kCoreRounds; ++round) {
         const int wrong = solveCore(rows, responses, problem, x, states, wTolerance, settings, result);
-        if (wrong == 0) return finish(x, result);
+        if (wrong == 0) return finish(x, states, result);
         if (wrong < 0) break;
         for (std::size_t i = 0; i < n; ++i)
             if (next_[i] != states[i]) {
@@ -152,6 +163,34 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     }
     result.status = LcpStatus::NotConverged;
     return result;
+}
+
+// Whether x, as given, is an answer with these states: every row complementary within the
+// tolerance (free rows with w = 0 inside their box, the others on their bound with w pointing
+// away from it). A sliding friction row is as close to its box as the last solve left it (its
+// impulse and its normal's come from two solves, and redundant contacts make A ill-conditioned:
+// about 1e-9 on the resting bench ragdoll), so rows at a bound may be off it by twice that.
+// Leaves w_ and the bounds as check() does.
+bool SparseLcpSolver::guessHolds(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                                 const LcpProblem& problem, std::span<const Real> x, std::span<const LcpRowState> states,
+                                 Real wTolerance, Real tolerance) {
+    const std::size_t n = rows.size();
+    velocityChange(rows, responses, x, {});
+    for (std::size_t i = 0; i < n; ++i)
+        w_[i] = along(rows[i]) + (problem.cfm.empty() ? 0 : problem.cfm[i]) * x[i] - problem.b[i];
+    bounds(problem, x);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Real xTolerance = tolerance * std::max({Real(1), std::isfinite(lo_[i]) ? std::abs(lo_[i]) : 0,
+                                                      std::isfinite(hi_[i]) ? std::abs(hi_[i]) : 0});
+        const Real gap = std::max(xTolerance, 2 * boundGap_);
+        const bool holds = states[i] == LcpRowState::Free
+                               ? std::abs(w_[i]) <= wTolerance && x[i] >= lo_[i] - xTolerance && x[i] <= hi_[i] + xTolerance
+                           : states[i] == LcpRowState::AtLower
+                               ? std::abs(x[i] - lo_[i]) <= gap && (lo_[i] == hi_[i] || w_[i] >= -wTolerance)
+                               : std::abs(x[i] - hi_[i]) <= gap && (lo_[i] == hi_[i] || w_[i] <= wTolerance);
+        if (!holds) return false;
+    }
+    return true;
 }
 
 // w of every row at x, the bounds at x, and the state each row wants (next_); returns how many
@@ -183,10 +222,16 @@ int SparseLcpSolver::check(std::span<const ConstraintRow> rows, std::span<const 
     return wrong;
 }
 
-// The natural residual of the answer, from the w and bounds check() left.
-SparseLcpResult& SparseLcpSolver::finish(std::span<const Real> x, SparseLcpResult& result) const {
-    for (std::size_t i = 0; i < x.size(); ++i)
+// The natural residual of the answer, from the w and bounds check() left, and how far its rows at
+// a bound are off it (boundGap_, for guessHolds).
+SparseLcpResult& SparseLcpSolver::finish(std::span<const Real> x, std::span<const LcpRowState> states,
+                                         SparseLcpResult& result) {
+    boundGap_ = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
         result.residual = std::max(result.residual, std::abs(x[i] - mid(lo_[i], hi_[i], x[i] - w_[i])));
+        if (states[i] == LcpRowState::AtLower) boundGap_ = std::max(boundGap_, std::abs(x[i] - lo_[i]));
+        if (states[i] == LcpRowState::AtUpper) boundGap_ = std::max(boundGap_, std::abs(x[i] - hi_[i]));
+    }
     return result;
 }
 

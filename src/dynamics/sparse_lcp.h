@@ -26,7 +26,8 @@ namespace af {
 struct SparseLcpResult {
     LcpStatus status = LcpStatus::Solved;  // NotConverged: no answer, fall back; InvalidInput:
                                            // rows the factorisation cannot take (see analyse)
-    int trials = 0;                        // guesses solved (1: the warm start held)
+    int trials = 0;                        // patterns solved (0: the guess's own impulses held,
+                                           // 1: its states held)
     int couplingSolves = 0;                // trials with sliding friction rows (solved coupled)
     int coreRows = 0;                      // rows of the dense core, when the trials did not settle
     int factorisations = 0;
@@ -51,9 +52,11 @@ private:
     void solveFree(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                    std::span<const Real> b, std::span<const Real> x, std::span<Real> out);
     bool solveSmall(std::size_t k);
+    bool guessHolds(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
+                    std::span<const Real> x, std::span<const LcpRowState> states, Real wTolerance, Real tolerance);
     int check(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
               std::span<const Real> x, std::span<const LcpRowState> states, Real wTolerance, Real tolerance);
-    SparseLcpResult& finish(std::span<const Real> x, SparseLcpResult& result) const;
+    SparseLcpResult& finish(std::span<const Real> x, std::span<const LcpRowState> states, SparseLcpResult& result);
     int solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
                   std::span<Real> x, std::span<LcpRowState> states, Real wTolerance, const LcpExactSettings& settings,
                   SparseLcpResult& result);
@@ -65,6 +68,7 @@ private:
     Real along(const ConstraintRow& row) const;
 
     SparseRowFactor factor_;
+    Real boundGap_ = 0;  // of the last solved answer: its rows at a bound, how far off it
     std::vector<Real> lo_, hi_, w_, rhs_, paths_, small_, beta_;
     std::vector<std::uint8_t> free_, use_, reached_, switched_;
     // The core (sparse_core.cpp): rows whose state the trials could not settle, solved as a dense

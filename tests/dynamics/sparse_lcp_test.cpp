@@ -273,6 +273,34 @@ TEST(SparseLcp, AGuessThatHoldsCostsOneTrial) {
     EXPECT_GT(again.result.couplingSolves, 0) << "some contacts slide";
 }
 
+// The answer itself as the next guess (a figure at rest meets its last problem again): it holds
+// as it is, nothing is factorised and the impulses stay. A right-hand side moved by more than
+// the tolerance is solved again.
+TEST(SparseLcp, AnAnswerThatStillHoldsIsKeptWithoutFactorising) {
+    TreeSolver tree;
+    const Scene scene = humanoidWithContacts(tree);
+    Rows in(scene, false);
+    LcpProblem problem = in.system.problem();
+    SparseLcpSolver solver;
+    std::vector<Real> x(in.rows.size(), 0);
+    std::vector<LcpRowState> states(in.rows.size(), LcpRowState::Unknown);
+    ASSERT_EQ(solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings).status, LcpStatus::Solved);
+    const std::vector<Real> answer = x;
+    const SparseLcpResult held = solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings);
+    EXPECT_EQ(held.status, LcpStatus::Solved);
+    EXPECT_EQ(held.trials, 0);
+    EXPECT_EQ(held.factorisations, 0);
+    EXPECT_EQ(x, answer);
+
+    std::vector<Real> moved(problem.b.begin(), problem.b.end());
+    for (Real& b : moved) b += 1e-6;
+    problem.b = moved;
+    const SparseLcpResult again = solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings);
+    EXPECT_EQ(again.status, LcpStatus::Solved);
+    EXPECT_GE(again.trials, 1);
+    EXPECT_NE(x, answer);
+}
+
 // Three rows of one joint that repeat each other and carry no CFM: no pivot for the third.
 TEST(SparseLcp, DependentRowsWithoutCfmAreRefused) {
     const std::vector<RigidBody> bodies = {RigidBody::dynamic(2, Mat3::Identity(), Vec3(0, 0, -5), Quat::Identity())};
