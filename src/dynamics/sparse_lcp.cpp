@@ -171,26 +171,34 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     return result;
 }
 
+// w of every row at x and the bounds at x, into w_, lo_ and hi_.
+void SparseLcpSolver::evaluate(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                               const LcpProblem& problem, std::span<const Real> x) {
+    velocityChange(rows, responses, x, {});
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        w_[i] = along(rows[i]) + (problem.cfm.empty() ? 0 : problem.cfm[i]) * x[i] - problem.b[i];
+    bounds(problem, x);
+}
+
+// How far from a bound row i's x may be and still count as at it.
+Real SparseLcpSolver::xTolerance(std::size_t i, Real tolerance) const {
+    return tolerance * std::max({Real(1), std::isfinite(lo_[i]) ? std::abs(lo_[i]) : 0, std::isfinite(hi_[i]) ? std::abs(hi_[i]) : 0});
+}
+
 // Whether x, as given, is an answer with these states: every row complementary within the
 // tolerance (free rows with w = 0, within kHoldFraction of it, inside their box; the others on
-// their bound with w pointing away from it). A sliding friction row is as close to its box as the last solve left it (its
-// impulse and its normal's come from two solves, and redundant contacts make A ill-conditioned:
-// about 1e-9 on the resting bench ragdoll), so rows at a bound may be off it by twice that.
-// Leaves w_ and the bounds as check() does.
+// their bound with w pointing away from it). A sliding friction row is as close to its box as
+// the last solve left it (its impulse and its normal's come from two solves, and redundant
+// contacts make A ill-conditioned: about 1e-9 on the resting bench ragdoll), so rows at a bound
+// may be off it by twice that. Leaves w_ and the bounds as check() does.
 bool SparseLcpSolver::guessHolds(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                                  const LcpProblem& problem, std::span<const Real> x, std::span<const LcpRowState> states,
                                  Real wTolerance, Real tolerance) {
-    const std::size_t n = rows.size();
-    velocityChange(rows, responses, x, {});
-    for (std::size_t i = 0; i < n; ++i)
-        w_[i] = along(rows[i]) + (problem.cfm.empty() ? 0 : problem.cfm[i]) * x[i] - problem.b[i];
-    bounds(problem, x);
-    for (std::size_t i = 0; i < n; ++i) {
-        const Real xTolerance = tolerance * std::max({Real(1), std::isfinite(lo_[i]) ? std::abs(lo_[i]) : 0,
-                                                      std::isfinite(hi_[i]) ? std::abs(hi_[i]) : 0});
-        const Real gap = std::max(xTolerance, 2 * boundGap_);
+    evaluate(rows, responses, problem, x);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Real atBound = xTolerance(i, tolerance), gap = std::max(atBound, 2 * boundGap_);
         const bool holds = states[i] == LcpRowState::Free
-                               ? std::abs(w_[i]) <= kHoldFraction * wTolerance && x[i] >= lo_[i] - xTolerance && x[i] <= hi_[i] + xTolerance
+                               ? std::abs(w_[i]) <= kHoldFraction * wTolerance && x[i] >= lo_[i] - atBound && x[i] <= hi_[i] + atBound
                            : states[i] == LcpRowState::AtLower
                                ? std::abs(x[i] - lo_[i]) <= gap && (lo_[i] == hi_[i] || w_[i] >= -wTolerance)
                                : std::abs(x[i] - hi_[i]) <= gap && (lo_[i] == hi_[i] || w_[i] <= wTolerance);
@@ -204,19 +212,14 @@ bool SparseLcpSolver::guessHolds(std::span<const ConstraintRow> rows, std::span<
 int SparseLcpSolver::check(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                            const LcpProblem& problem, std::span<const Real> x, std::span<const LcpRowState> states,
                            Real wTolerance, Real tolerance) {
-    const std::size_t n = rows.size();
-    velocityChange(rows, responses, x, {});
-    for (std::size_t i = 0; i < n; ++i)
-        w_[i] = along(rows[i]) + (problem.cfm.empty() ? 0 : problem.cfm[i]) * x[i] - problem.b[i];
-    bounds(problem, x);
+    evaluate(rows, responses, problem, x);
     int wrong = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const Real xTolerance = tolerance * std::max({Real(1), std::isfinite(lo_[i]) ? std::abs(lo_[i]) : 0,
-                                                      std::isfinite(hi_[i]) ? std::abs(hi_[i]) : 0});
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Real atBound = xTolerance(i, tolerance);
         LcpRowState want = states[i];
         if (states[i] == LcpRowState::Free) {
-            if (x[i] < lo_[i] - xTolerance) want = LcpRowState::AtLower;
-            if (x[i] > hi_[i] + xTolerance) want = LcpRowState::AtUpper;
+            if (x[i] < lo_[i] - atBound) want = LcpRowState::AtLower;
+            if (x[i] > hi_[i] + atBound) want = LcpRowState::AtUpper;
         } else if (states[i] == LcpRowState::AtLower && lo_[i] != hi_[i] && w_[i] < -wTolerance) {
             want = LcpRowState::Free;
         } else if (states[i] == LcpRowState::AtUpper && lo_[i] != hi_[i] && w_[i] > wTolerance) {

@@ -52,6 +52,9 @@ private:
     void solveFree(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                    std::span<const Real> b, std::span<const Real> x, std::span<Real> out);
     bool solveSmall(std::size_t k);
+    void evaluate(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
+                  std::span<const Real> x);
+    Real xTolerance(std::size_t i, Real tolerance) const;
     bool guessHolds(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
                     std::span<const Real> x, std::span<const LcpRowState> states, Real wTolerance, Real tolerance);
     int check(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
