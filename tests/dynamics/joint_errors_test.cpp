@@ -39,16 +39,10 @@ TEST(JointErrors, AreTheErrorsAndBoundsOfTheWrittenRows) {
         for (const ConstraintType type : kTypes)
             for (const int body2 : {1, kWorld}) {
                 SCOPED_TRACE(std::string(toString(type)) + " trial " + std::to_string(trial));
-                FigureConstraint c = constraintOf(type, body2);
-                c.anchor = random.vector(3);
-                c.anchor2 = random.vector(3);
-                c.axis = random.direction();
-                c.shafts[0] = random.direction();
-                c.shafts[1] = -c.shafts[0];
+                FigureConstraint c = randomConstraint(type, body2, random);
                 c.limit = trial % 3 == 0 ? LimitType::None : type == ConstraintType::Hinge || trial % 3 == 1 ? LimitType::Cone
                                                                                                           : LimitType::Pyramid;
                 c.limitAngles = {20, 30, 10};
-                c.limitAxis = random.direction();
                 c.minLength = 1;
                 c.maxLength = 4;
                 c.friction = trial % 2;

@@ -81,6 +81,19 @@ private:
     std::mt19937_64 engine_;
 };
 
+// A constraint of the type with random anchors, axis, shafts (opposite, so that a universal
+// joint starts untwisted) and limit axis; limits, lengths and friction are the caller's.
+inline FigureConstraint randomConstraint(ConstraintType type, int body2, Random& random) {
+    FigureConstraint c = constraintOf(type, body2);
+    c.anchor = random.vector(3);
+    c.anchor2 = random.vector(3);
+    c.axis = random.direction();
+    c.shafts[0] = random.direction();
+    c.shafts[1] = -c.shafts[0];
+    c.limitAxis = random.direction();
+    return c;
+}
+
 // The body moved for time t along its current (constant) velocities: exact rotation about ω.
 inline RigidBody advanced(const RigidBody& b, Real t) {
     RigidBody out = b;

@@ -33,15 +33,9 @@ TEST(JointTypes, RowsAgainstTheWorldHaveZeroBodyBBlocks) {
     Random random(21);
     for (const ConstraintType type : {ConstraintType::Fixed, ConstraintType::BallAndSocket, ConstraintType::Universal,
                                       ConstraintType::Hinge, ConstraintType::Slider, ConstraintType::Spring}) {
-        FigureConstraint c = constraintOf(type, kWorld);
-        c.anchor = random.vector(3);
-        c.anchor2 = random.vector(3);
-        c.axis = random.direction();
-        c.shafts[0] = random.direction();
-        c.shafts[1] = -c.shafts[0];
+        FigureConstraint c = randomConstraint(type, kWorld, random);
         c.limit = type == ConstraintType::Hinge ? LimitType::Cone : LimitType::Pyramid;
         c.limitAngles = {20, 30, 0};
-        c.limitAxis = random.direction();
         c.minLength = 1;
         c.maxLength = 10;
         c.friction = 1;
