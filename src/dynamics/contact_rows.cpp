@@ -2,11 +2,13 @@
 // point is  Cdot = n·(v_A + ω_A×r_A) − n·(v_B + ω_B×r_B)  =  [n │ r_A×n]·u_A − [n │ r_B×n]·u_B,
 // and C is the separation along n (−depth). Tangent rows have the same form with t for n.
 
-#include "af/dynamics/contact.h"
+#include "contact_rows.h"
 
 #include <cmath>
 
 namespace af {
+
+namespace contact_detail {
 
 namespace {
 
@@ -17,58 +19,68 @@ void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
     t2 = n.cross(t1);
 }
 
-// The world inverse inertias of a contact's two bodies (unused for the world).
-struct Inertias {
-    const Mat3& a;
-    const Mat3& b;
+// One body of a contact, looked up once for all of its rows; body is null for the world.
+struct Side {
+    const RigidBody* body = nullptr;
+    const Mat3* inverseInertia = nullptr;
+    Vec3 lever = Vec3::Zero();  // r = p − x
 };
 
-// Appends the row along d, with its softness relative to its own J M⁻¹ Jᵀ; returns its index.
-int addRowAlong(const Contact& c, std::span<const RigidBody> bodies, const Inertias& inertia, const Vec3& d,
-                Real relativeCfm, ConstraintRows& out) {
+Side sideOf(int index, std::span<const RigidBody> bodies, const Mat3& inverseInertia, const Vec3& point) {
+    if (index == kWorldBody) return {};
+    const RigidBody& body = bodies[static_cast<std::size_t>(index)];
+    return {&body, &inverseInertia, point - body.position};
+}
+
+// Appends the row along d, with its softness relative to its own J M⁻¹ Jᵀ. The reference
+// holds only until the next row is appended. Inlined into writeRows, so that the three rows of a
+// point share the loads of its bodies, lever arms and inertias (and no call costs a frame).
+[[gnu::always_inline]] inline ConstraintRow& addRowAlong(const ContactView& c, const Side& a, const Side& b, const Vec3& d, Real relativeCfm,
+                           ConstraintRows& out) {
     ConstraintRow& row = out.append();
     row.bodyA = c.bodyA;
     row.bodyB = c.bodyB;
     Real diagonal = 0;
-    if (c.bodyA != kWorldBody) {
-        const RigidBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
+    if (a.body) {
         row.linearA = d;
-        row.angularA = (c.point - a.position).cross(d);
-        diagonal += a.inverseMass * row.linearA.squaredNorm() + row.angularA.dot(inertia.a * row.angularA);
+        row.angularA = a.lever.cross(d);
+        diagonal += a.body->inverseMass * row.linearA.squaredNorm() + row.angularA.dot(*a.inverseInertia * row.angularA);
     }
-    if (c.bodyB != kWorldBody) {
-        const RigidBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
+    if (b.body) {
         row.linearB = -d;
-        row.angularB = -(c.point - b.position).cross(d);
-        diagonal += b.inverseMass * row.linearB.squaredNorm() + row.angularB.dot(inertia.b * row.angularB);
+        row.angularB = -b.lever.cross(d);
+        diagonal += b.body->inverseMass * row.linearB.squaredNorm() + row.angularB.dot(*b.inverseInertia * row.angularB);
     }
     row.cfm = relativeCfm * diagonal;
-    return static_cast<int>(out.size()) - 1;
+    return row;
 }
 
-Real velocityAlong(const Contact& c, std::span<const RigidBody> bodies, const Vec3& d) {
+Real velocityAlong(const ContactView& c, const Side& a, const Side& b, const Vec3& d) {
     Real v = 0;
-    if (c.bodyA != kWorldBody) v += d.dot(bodies[static_cast<std::size_t>(c.bodyA)].velocityAt(c.point));
-    if (c.bodyB != kWorldBody) v -= d.dot(bodies[static_cast<std::size_t>(c.bodyB)].velocityAt(c.point));
+    if (a.body) v += d.dot(a.body->velocityAt(c.point));
+    if (b.body) v -= d.dot(b.body->velocityAt(c.point));
     return v;
 }
 
-int writeRows(const Contact& c, std::span<const RigidBody> bodies, const Inertias& inertia,
-              const ContactSettings& settings, ConstraintRows& out) {
-    const int normalIndex = addRowAlong(c, bodies, inertia, c.normal, settings.relativeCfm, out);
-    {  // the reference holds only until the next row is appended
-        ConstraintRow& normal = out[static_cast<std::size_t>(normalIndex)];
+}  // namespace
+
+int writeRows(const ContactView& c, std::span<const RigidBody> bodies, const Mat3& inverseInertiaA,
+              const Mat3& inverseInertiaB, const ContactSettings& settings, ConstraintRows& out) {
+    const Side a = sideOf(c.bodyA, bodies, inverseInertiaA, c.point);
+    const Side b = sideOf(c.bodyB, bodies, inverseInertiaB, c.point);
+    const int normalIndex = static_cast<int>(out.size());
+    {
+        ConstraintRow& normal = addRowAlong(c, a, b, c.normal, settings.relativeCfm, out);
         normal.lo = 0;
         normal.hi = kInfinity;
         normal.error = settings.slop - c.depth;
-        const Real approach = c.approachVelocity ? *c.approachVelocity : velocityAlong(c, bodies, c.normal);
+        const Real approach = c.approachVelocity ? *c.approachVelocity : velocityAlong(c, a, b, c.normal);
         if (approach < -settings.restitutionThreshold) normal.target = -c.restitution * approach;
     }
 
     if (c.friction <= 0) return normalIndex;
     auto addFriction = [&](const Vec3& t) {
-        const int index = addRowAlong(c, bodies, inertia, t, settings.relativeCfm, out);
-        ConstraintRow& row = out[static_cast<std::size_t>(index)];
+        ConstraintRow& row = addRowAlong(c, a, b, t, settings.relativeCfm, out);
         row.frictionSource = normalIndex;
         row.frictionCoefficient = c.friction;
     };
@@ -86,6 +98,22 @@ int writeRows(const Contact& c, std::span<const RigidBody> bodies, const Inertia
     return normalIndex;
 }
 
+}  // namespace contact_detail
+
+namespace {
+
+contact_detail::ContactView viewOf(const Contact& c) {
+    return {c.bodyA,
+            c.bodyB,
+            c.point,
+            c.normal,
+            c.depth,
+            c.friction,
+            c.restitution,
+            c.approachVelocity ? &*c.approachVelocity : nullptr,
+            c.frictionDirection ? &*c.frictionDirection : nullptr};
+}
+
 Mat3 inverseInertiaOf(int body, std::span<const RigidBody> bodies) {
     return body == kWorldBody ? Mat3::Zero() : bodies[static_cast<std::size_t>(body)].inverseInertiaWorld();
 }
@@ -101,13 +129,13 @@ int writeContactRows(const Contact& c, std::span<const RigidBody> bodies, const 
                      ConstraintRows& out) {
     const Mat3 a = inverseInertiaOf(c.bodyA, bodies);
     const Mat3 b = inverseInertiaOf(c.bodyB, bodies);
-    return writeRows(c, bodies, {a, b}, settings, out);
+    return contact_detail::writeRows(viewOf(c), bodies, a, b, settings, out);
 }
 
 int writeContactRows(const Contact& c, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld,
                      const ContactSettings& settings, ConstraintRows& out) {
-    return writeRows(c, bodies, {inverseInertiaOf(c.bodyA, inverseInertiaWorld), inverseInertiaOf(c.bodyB, inverseInertiaWorld)},
-                     settings, out);
+    return contact_detail::writeRows(viewOf(c), bodies, inverseInertiaOf(c.bodyA, inverseInertiaWorld),
+                                     inverseInertiaOf(c.bodyB, inverseInertiaWorld), settings, out);
 }
 
 }  // namespace af

@@ -1,5 +1,7 @@
 #include "contact_set.h"
 
+#include "contact_rows.h"
+
 #include <algorithm>
 
 namespace af {
@@ -33,31 +35,31 @@ void ContactSet::gather(const std::vector<BodyContact>& manifolds, std::span<con
     points_.clear();
     for (const BodyContact& c : manifolds) {
         const int bodyB = c.bodyB == kStaticWorld ? kWorldBody : c.bodyB;
-        const BodyMaterial& a = materials[static_cast<std::size_t>(c.bodyA)];
+        const BodyMaterial& material = materials[static_cast<std::size_t>(c.bodyA)];
         // Doom: μ is body A's, lowered to B's when B's is lower.
-        Real friction = a.friction;
+        Real friction = material.friction;
         if (bodyB != kWorldBody) friction = std::min(friction, materials[static_cast<std::size_t>(bodyB)].friction);
         const std::uint64_t pairKey = mix(mix(static_cast<std::uint64_t>(c.bodyA)) ^
                                           static_cast<std::uint64_t>(c.bodyB == kStaticWorld ? (1ull << 32) + static_cast<std::uint64_t>(c.staticShape)
                                                                                              : static_cast<std::uint64_t>(c.bodyB)));
+        const RigidBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
+        const RigidBody* b = bodyOrNull(bodies, bodyB);
         const Vec3& n = c.manifold.normal;
         for (int i = 0; i < c.manifold.count; ++i) {
             const ManifoldPoint& m = c.manifold.points[static_cast<std::size_t>(i)];
-            ContactPoint p;
+            ContactPoint& p = points_.emplace_back();
             p.bodyA = c.bodyA;
             p.bodyB = bodyB;
             p.normal = n;
             // Separation n·(pA − pB) = −depth, split evenly about the reported midpoint.
-            p.localA = toLocal(bodyOrNull(bodies, c.bodyA), m.point - n * (m.depth / 2));
-            p.localB = toLocal(bodyOrNull(bodies, bodyB), m.point + n * (m.depth / 2));
+            p.localA = toLocal(&a, m.point - n * (m.depth / 2));
+            p.localB = toLocal(b, m.point + n * (m.depth / 2));
             p.friction = friction;
-            p.restitution = a.bounciness;
-            p.frictionDirection = a.frictionDirection;
+            p.restitution = material.bounciness;
+            p.frictionDirection = material.frictionDirection;
             p.key = mix(pairKey ^ m.id);
-            const RigidBody* a = bodyOrNull(bodies, c.bodyA);
-            const RigidBody* b = bodyOrNull(bodies, bodyB);
-            p.approachVelocity = n.dot((a ? a->velocityAt(m.point) : Vec3::Zero()) - (b ? b->velocityAt(m.point) : Vec3::Zero()));
-            points_.push_back(p);
+            // v_A − 0 is v_A bit for bit, so the world's side is left out.
+            p.approachVelocity = b ? n.dot(a.velocityAt(m.point) - b->velocityAt(m.point)) : n.dot(a.velocityAt(m.point));
         }
     }
 }
@@ -79,19 +81,47 @@ Contact currentContact(const ContactPoint& p, std::span<const RigidBody> bodies)
     return c;
 }
 
+Real currentDepth(const ContactPoint& p, std::span<const RigidBody> bodies) {
+    const Vec3 onA = toWorld(bodyOrNull(bodies, p.bodyA), p.localA);
+    const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
+    return -p.normal.dot(onA - onB);
+}
+
+// currentContact's arithmetic, without building a Contact.
 void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
                       std::span<const Mat3> inverseInertiaWorld, const ContactSettings& settings, ConstraintRows& rows,
                       std::vector<std::uint64_t>& keys) {
+    static const Mat3 world = Mat3::Zero();  // never read
+    const auto inertiaOf = [&](int body) -> const Mat3& {
+        return body == kWorldBody ? world : inverseInertiaWorld[static_cast<std::size_t>(body)];
+    };
     for (const ContactPoint& p : points) {
+        const RigidBody* a = bodyOrNull(bodies, p.bodyA);
+        const Vec3 onA = toWorld(a, p.localA);
+        const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
+        contact_detail::ContactView c;
+        c.bodyA = p.bodyA;
+        c.bodyB = p.bodyB;
+        c.point = (onA + onB) / 2;
+        c.normal = p.normal;
+        c.depth = -p.normal.dot(onA - onB);
+        c.friction = p.friction;
+        c.restitution = p.restitution;
+        c.approachVelocity = &p.approachVelocity;
+        Vec3 frictionDirection;
+        if (p.frictionDirection) {
+            frictionDirection = a->orientation * *p.frictionDirection;
+            c.frictionDirection = &frictionDirection;
+        }
         const std::size_t first = rows.size();
-        writeContactRows(currentContact(p, bodies), bodies, inverseInertiaWorld, settings, rows);
+        contact_detail::writeRows(c, bodies, inertiaOf(p.bodyA), inertiaOf(p.bodyB), settings, rows);
         for (std::size_t r = first; r < rows.size(); ++r) keys.push_back(p.key + (r - first));
     }
 }
 
 Real maxPenetration(std::span<const ContactPoint> points, std::span<const RigidBody> bodies) {
     Real worst = 0;
-    for (const ContactPoint& p : points) worst = std::max(worst, currentContact(p, bodies).depth);
+    for (const ContactPoint& p : points) worst = std::max(worst, currentDepth(p, bodies));
     return worst;
 }
 

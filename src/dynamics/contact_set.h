@@ -40,7 +40,10 @@ struct ContactPoint {
 
 // The contact at the bodies' current poses.
 Contact currentContact(const ContactPoint& point, std::span<const RigidBody> bodies);
-// Appends every point's rows, and one key per row (the point's key and the row's place).
+// Its depth alone (currentContact(point, bodies).depth, bit for bit), for callers that need no more.
+Real currentDepth(const ContactPoint& point, std::span<const RigidBody> bodies);
+// Appends every point's rows, and one key per row (the point's key and the row's place): the
+// rows writeContactRows(currentContact(point, bodies), ...) appends, bit for bit.
 // inverseInertiaWorld: each body's RigidBody::inverseInertiaWorld, indexed as bodies.
 void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
                       std::span<const Mat3> inverseInertiaWorld, const ContactSettings& settings, ConstraintRows& rows,
