@@ -79,22 +79,22 @@ int writeRows(const ContactView& c, std::span<const RigidBody> bodies, const Mat
     }
 
     if (c.friction <= 0) return normalIndex;
-    auto addFriction = [&](const Vec3& t) {
-        ConstraintRow& row = addRowAlong(c, a, b, t, settings.relativeCfm, out);
+    // One loop over the directions, not a call per row: the row writer is inlined once.
+    Vec3 directions[2];
+    int count = 2;
+    const Vec3 along = c.frictionDirection ? Vec3(*c.frictionDirection - c.normal * c.normal.dot(*c.frictionDirection))
+                                           : Vec3::Zero();
+    if (c.frictionDirection && along.norm() > 1e-9) {
+        directions[0] = along.normalized();
+        count = 1;
+    } else {
+        tangents(c.normal, directions[0], directions[1]);
+    }
+    for (int k = 0; k < count; ++k) {
+        ConstraintRow& row = addRowAlong(c, a, b, directions[k], settings.relativeCfm, out);
         row.frictionSource = normalIndex;
         row.frictionCoefficient = c.friction;
-    };
-    if (c.frictionDirection) {
-        const Vec3 along = *c.frictionDirection - c.normal * c.normal.dot(*c.frictionDirection);
-        if (along.norm() > 1e-9) {
-            addFriction(along.normalized());
-            return normalIndex;
-        }
     }
-    Vec3 t1, t2;
-    tangents(c.normal, t1, t2);
-    addFriction(t1);
-    addFriction(t2);
     return normalIndex;
 }
 
