@@ -1,16 +1,29 @@
-// Contact rows. With r_A = p − x_A and r_B = p − x_B, the relative normal velocity at the contact
+// Contact rows, of a hand-made Contact (contact.h) and of the step's ContactPoints (contact_set.h),
+// by the same arithmetic. With r_A = p − x_A and r_B = p − x_B, the relative normal velocity at the contact
 // point is  Cdot = n·(v_A + ω_A×r_A) − n·(v_B + ω_B×r_B)  =  [n │ r_A×n]·u_A − [n │ r_B×n]·u_B,
 // and C is the separation along n (−depth). Tangent rows have the same form with t for n.
 
-#include "contact_rows.h"
+#include "contact_set.h"
 
 #include <cmath>
 
 namespace af {
 
-namespace contact_detail {
-
 namespace {
+
+// A contact as the writer reads it: a Contact's optional parts as pointers (null when absent),
+// so that each caller builds it on the stack without copying optionals.
+struct ContactView {
+    int bodyA = kWorldBody;
+    int bodyB = kWorldBody;
+    Vec3 point;                               // world
+    Vec3 normal;                              // world, unit, B towards A
+    Real depth = 0;
+    Real friction = 0;
+    Real restitution = 0;
+    const Real* approachVelocity = nullptr;   // empty: the bodies' current velocities
+    const Vec3* frictionDirection = nullptr;  // world
+};
 
 // Two unit tangents completing n to a right-handed basis.
 void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
@@ -62,9 +75,9 @@ Real velocityAlong(const ContactView& c, const Side& a, const Side& b, const Vec
     return v;
 }
 
-}  // namespace
-
-int writeRows(const ContactView& c, std::span<const RigidBody> bodies, const Mat3& inverseInertiaA,
+// Appends the contact's rows; returns the index of its normal row. inverseInertiaA/B: the world
+// inverse inertias of A and B (not read for the world). Inlined into each of its callers.
+[[gnu::always_inline]] inline int writeRows(const ContactView& c, std::span<const RigidBody> bodies, const Mat3& inverseInertiaA,
               const Mat3& inverseInertiaB, const ContactSettings& settings, ConstraintRows& out) {
     const Side a = sideOf(c.bodyA, bodies, inverseInertiaA, c.point);
     const Side b = sideOf(c.bodyB, bodies, inverseInertiaB, c.point);
@@ -98,11 +111,7 @@ int writeRows(const ContactView& c, std::span<const RigidBody> bodies, const Mat
     return normalIndex;
 }
 
-}  // namespace contact_detail
-
-namespace {
-
-contact_detail::ContactView viewOf(const Contact& c) {
+ContactView viewOf(const Contact& c) {
     return {c.bodyA,
             c.bodyB,
             c.point,
@@ -129,13 +138,44 @@ int writeContactRows(const Contact& c, std::span<const RigidBody> bodies, const 
                      ConstraintRows& out) {
     const Mat3 a = inverseInertiaOf(c.bodyA, bodies);
     const Mat3 b = inverseInertiaOf(c.bodyB, bodies);
-    return contact_detail::writeRows(viewOf(c), bodies, a, b, settings, out);
+    return writeRows(viewOf(c), bodies, a, b, settings, out);
 }
 
 int writeContactRows(const Contact& c, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld,
                      const ContactSettings& settings, ConstraintRows& out) {
-    return contact_detail::writeRows(viewOf(c), bodies, inverseInertiaOf(c.bodyA, inverseInertiaWorld),
+    return writeRows(viewOf(c), bodies, inverseInertiaOf(c.bodyA, inverseInertiaWorld),
                                      inverseInertiaOf(c.bodyB, inverseInertiaWorld), settings, out);
+}
+
+// The arithmetic of currentContact (contact_set.cpp) without building a Contact.
+void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
+                      std::span<const Mat3> inverseInertiaWorld, const ContactSettings& settings, ConstraintRows& rows,
+                      std::vector<std::uint64_t>& keys) {
+    using contact_detail::bodyOrNull;
+    using contact_detail::toWorld;
+    for (const ContactPoint& p : points) {
+        const RigidBody* a = bodyOrNull(bodies, p.bodyA);
+        const Vec3 onA = toWorld(a, p.localA);
+        const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
+        ContactView c;
+        c.bodyA = p.bodyA;
+        c.bodyB = p.bodyB;
+        c.point = (onA + onB) / 2;
+        c.normal = p.normal;
+        c.depth = -p.normal.dot(onA - onB);
+        c.friction = p.friction;
+        c.restitution = p.restitution;
+        c.approachVelocity = &p.approachVelocity;
+        Vec3 frictionDirection;
+        if (p.frictionDirection) {
+            frictionDirection = a->orientation * *p.frictionDirection;
+            c.frictionDirection = &frictionDirection;
+        }
+        const std::size_t first = rows.size();
+        writeRows(c, bodies, inverseInertiaOf(p.bodyA, inverseInertiaWorld),
+                                  inverseInertiaOf(p.bodyB, inverseInertiaWorld), settings, rows);
+        for (std::size_t r = first; r < rows.size(); ++r) keys.push_back(p.key + (r - first));
+    }
 }
 
 }  // namespace af

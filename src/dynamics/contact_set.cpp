@@ -1,7 +1,5 @@
 #include "contact_set.h"
 
-#include "contact_rows.h"
-
 #include <algorithm>
 
 namespace af {
@@ -20,13 +18,8 @@ Vec3 toLocal(const RigidBody* body, const Vec3& world) {
     return body ? Vec3(body->orientation.conjugate() * (world - body->position)) : world;
 }
 
-Vec3 toWorld(const RigidBody* body, const Vec3& local) {
-    return body ? Vec3(body->position + body->orientation * local) : local;
-}
-
-const RigidBody* bodyOrNull(std::span<const RigidBody> bodies, int index) {
-    return index == kWorldBody ? nullptr : &bodies[static_cast<std::size_t>(index)];
-}
+using contact_detail::bodyOrNull;
+using contact_detail::toWorld;
 
 }  // namespace
 
@@ -85,38 +78,6 @@ Real currentDepth(const ContactPoint& p, std::span<const RigidBody> bodies) {
     const Vec3 onA = toWorld(bodyOrNull(bodies, p.bodyA), p.localA);
     const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
     return -p.normal.dot(onA - onB);
-}
-
-// currentContact's arithmetic, without building a Contact.
-void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
-                      std::span<const Mat3> inverseInertiaWorld, const ContactSettings& settings, ConstraintRows& rows,
-                      std::vector<std::uint64_t>& keys) {
-    static const Mat3 world = Mat3::Zero();  // never read
-    const auto inertiaOf = [&](int body) -> const Mat3& {
-        return body == kWorldBody ? world : inverseInertiaWorld[static_cast<std::size_t>(body)];
-    };
-    for (const ContactPoint& p : points) {
-        const RigidBody* a = bodyOrNull(bodies, p.bodyA);
-        const Vec3 onA = toWorld(a, p.localA);
-        const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
-        contact_detail::ContactView c;
-        c.bodyA = p.bodyA;
-        c.bodyB = p.bodyB;
-        c.point = (onA + onB) / 2;
-        c.normal = p.normal;
-        c.depth = -p.normal.dot(onA - onB);
-        c.friction = p.friction;
-        c.restitution = p.restitution;
-        c.approachVelocity = &p.approachVelocity;
-        Vec3 frictionDirection;
-        if (p.frictionDirection) {
-            frictionDirection = a->orientation * *p.frictionDirection;
-            c.frictionDirection = &frictionDirection;
-        }
-        const std::size_t first = rows.size();
-        contact_detail::writeRows(c, bodies, inertiaOf(p.bodyA), inertiaOf(p.bodyB), settings, rows);
-        for (std::size_t r = first; r < rows.size(); ++r) keys.push_back(p.key + (r - first));
-    }
 }
 
 Real maxPenetration(std::span<const ContactPoint> points, std::span<const RigidBody> bodies) {

@@ -38,6 +38,19 @@ struct ContactPoint {
     Real approachVelocity = 0;              // n·(v_A − v_B) at the point when gathered
 };
 
+namespace contact_detail {
+
+inline const RigidBody* bodyOrNull(std::span<const RigidBody> bodies, int index) {
+    return index == kWorldBody ? nullptr : &bodies[static_cast<std::size_t>(index)];
+}
+
+// Where a point fixed to a body (body frame), or to the world (body null, world frame), is now.
+inline Vec3 toWorld(const RigidBody* body, const Vec3& local) {
+    return body ? Vec3(body->position + body->orientation * local) : local;
+}
+
+}  // namespace contact_detail
+
 // The contact at the bodies' current poses.
 Contact currentContact(const ContactPoint& point, std::span<const RigidBody> bodies);
 // Its depth alone (currentContact(point, bodies).depth, bit for bit), for callers that need no more.
