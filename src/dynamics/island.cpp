@@ -164,7 +164,7 @@ Real Island::measuredViolation(const IslandContext& context) const {
         worst = std::max(worst, r.lo == 0 ? -r.error : std::abs(r.error));
     }
     for (const ContactPoint& p : points_)
-        worst = std::max(worst, -(context.settings.contact.slop - currentContact(p, bodies_).depth));
+        worst = std::max(worst, -(context.settings.contact.slop - currentDepth(p, bodies_)));
     return worst;
 }
 
