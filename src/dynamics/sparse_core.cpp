@@ -80,7 +80,7 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     solveFree(rows, responses, problem.b, x, x);
 
     // b' through the bodies; S = A_UU − Wᵀ D⁻¹ W with W = L⁻¹ A_FU, the core rows' columns
-    // forward-solved (sparse: each touches only its path to the root), one dense product.
+    // forward-solved (sparse: each touches only its path to the root).
     velocityChange(rows, responses, x, {});
     coreB_.resize(m);
     for (std::size_t u = 0; u < m; ++u) coreB_[u] = problem.b[static_cast<std::size_t>(core_[u])] - along(rows[static_cast<std::size_t>(core_[u])]);
@@ -102,13 +102,19 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     const Eigen::Map<const Matrix> w(paths_.data(), static_cast<Eigen::Index>(vars), static_cast<Eigen::Index>(m));
     Eigen::Map<Matrix> scaled(scaledPaths_.data(), static_cast<Eigen::Index>(vars), static_cast<Eigen::Index>(m));
     scaled.noalias() = Eigen::Map<const Vector>(inversePivots_.data(), static_cast<Eigen::Index>(vars)).asDiagonal() * w;
+    // One dot product per entry of the lower half, mirrored (S is symmetric): cheaper here than a
+    // general matrix product (the bench drop's first 250 steps: 652M instructions against 667M),
+    // and it never needs blocking buffers, which Eigen takes from the heap once they outgrow its
+    // stack limit.
     coreA_.resize(m * m);
-    Eigen::Map<Matrix> s(coreA_.data(), static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
-    s.noalias() = -w.transpose() * scaled;
     for (std::size_t v = 0; v < m; ++v) {
         const std::size_t column = static_cast<std::size_t>(core_[v]);
-        for (std::size_t u = 0; u < m; ++u)
-            coreA_[v * m + u] += rowCoupling(rows[static_cast<std::size_t>(core_[u])], rows[column], responses[column]);
+        for (std::size_t u = v; u < m; ++u) {
+            const Real entry = rowCoupling(rows[static_cast<std::size_t>(core_[u])], rows[column], responses[column]) -
+                               w.col(static_cast<Eigen::Index>(u)).dot(scaled.col(static_cast<Eigen::Index>(v)));
+            coreA_[v * m + u] = entry;
+            coreA_[u * m + v] = entry;
+        }
     }
     zeros_.assign(n, 0);
     coreLo_.resize(m);
