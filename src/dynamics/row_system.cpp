@@ -6,8 +6,6 @@ namespace af {
 
 namespace {
 
-Real dot6(const Vec3& l0, const Vec3& a0, const Vec3& l1, const Vec3& a1) { return l0.dot(l1) + a0.dot(a1); }
-
 // accumulateResponses with the rows' bodies given by bodiesOf(i) (a pair: A, B).
 template <class BodiesOf>
 void accumulate(std::size_t rows, BodiesOf bodiesOf, std::span<const RowResponse> responses,
@@ -93,15 +91,7 @@ void RowSystem::buildMatrix(const ConstraintRows& rows) {
         for (std::size_t j = 0; j <= i; ++j) {
             const ConstraintRow& rj = rows[j];
             const RowResponse& mj = response_[j];
-            Real v = 0;
-            if (ri.bodyA != kWorldBody) {
-                if (ri.bodyA == rj.bodyA) v += dot6(ri.linearA, ri.angularA, mj.linearA, mj.angularA);
-                if (ri.bodyA == rj.bodyB) v += dot6(ri.linearA, ri.angularA, mj.linearB, mj.angularB);
-            }
-            if (ri.bodyB != kWorldBody) {
-                if (ri.bodyB == rj.bodyA) v += dot6(ri.linearB, ri.angularB, mj.linearA, mj.angularA);
-                if (ri.bodyB == rj.bodyB) v += dot6(ri.linearB, ri.angularB, mj.linearB, mj.angularB);
-            }
+            const Real v = rowCoupling(ri, rj, mj);
             a_[i * n + j] = v;
             a_[j * n + i] = v;
         }

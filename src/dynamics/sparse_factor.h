@@ -85,7 +85,7 @@ private:
     std::vector<int> rowStart_, groupRows_;  // rows of each group, ascending
     std::vector<int> frontStart_, front_;    // later groups coupled to each group, fill included, ascending
     std::vector<int> bodyStart_, bodyRows_;  // rows touching each dynamic body, ascending
-    std::vector<int> fill_, scratchInts_;    // scratch
+    std::vector<int> fill_;                  // scratch
     bool analysed_ = false;                  // rowKey_ and what follows from it are valid
     std::vector<std::uint64_t> graph_;       // bit matrix of the pairs sharing a body
     std::size_t words_ = 0;                  // 64-bit words per row of graph_

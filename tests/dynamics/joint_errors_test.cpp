@@ -47,12 +47,7 @@ TEST(JointErrors, AreTheErrorsAndBoundsOfTheWrittenRows) {
                 c.maxLength = 4;
                 c.friction = trial % 2;
                 c.twistLimit = trial % 4 == 1 ? 15 : 0;
-                const Figure f = twoBodyFigure(random.pose(3), random.pose(3), c);
-                Joint j = makeJoints(f).at(0);
-                j.lastImpulse = 1;
-                std::vector<RigidBody> bodies = spawnBodies(f);
-                turnBody(bodies, 0, random.turn(1));
-                bodies[0].position += random.vector(1);
+                auto [j, bodies] = posedJoint(c, random);
                 bodies[1].position += random.vector(1);
                 bodies[0].linearVelocity = random.vector(1);
                 bodies[1].angularVelocity = random.vector(1);

@@ -130,6 +130,21 @@ inline void turnBody(std::vector<RigidBody>& bodies, int index, const Quat& turn
 }
 
 // Turns body `index` by `turn` about the world point `pivot`.
+// The constraint's joint (last impulse 1, so that joint friction has a bound) between two bodies
+// at random poses, body 0 then turned and moved off the joint's rest a little.
+struct PosedJoint {
+    Joint joint;
+    std::vector<RigidBody> bodies;
+};
+inline PosedJoint posedJoint(const FigureConstraint& c, Random& random) {
+    const Figure f = twoBodyFigure(random.pose(3), random.pose(3), c);
+    PosedJoint out{makeJoints(f).at(0), spawnBodies(f)};
+    out.joint.lastImpulse = 1;
+    turnBody(out.bodies, 0, random.turn(1));
+    out.bodies[0].position += random.vector(1);
+    return out;
+}
+
 inline void turnBodyAbout(std::vector<RigidBody>& bodies, int index, const Quat& turn, const Vec3& pivot) {
     RigidBody& b = bodies[static_cast<std::size_t>(index)];
     b.position = pivot + turn * (b.position - pivot);

@@ -39,12 +39,7 @@ TEST(JointTypes, RowsAgainstTheWorldHaveZeroBodyBBlocks) {
         c.minLength = 1;
         c.maxLength = 10;
         c.friction = 1;
-        const Figure f = twoBodyFigure(random.pose(3), random.pose(3), c);
-        Joint j = makeJoints(f).at(0);
-        j.lastImpulse = 1;
-        std::vector<RigidBody> bodies = spawnBodies(f);
-        turnBody(bodies, 0, random.turn(1));
-        bodies[0].position += random.vector(1);
+        auto [j, bodies] = posedJoint(c, random);
         ConstraintRows rows;
         writeJointRows(j, bodies, allLimitRows(), rows);
         ASSERT_GT(rows.size(), 0u) << toString(type);
