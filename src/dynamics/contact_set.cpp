@@ -57,23 +57,6 @@ void ContactSet::gather(const std::vector<BodyContact>& manifolds, std::span<con
     }
 }
 
-Contact currentContact(const ContactPoint& p, std::span<const RigidBody> bodies) {
-    const RigidBody* a = bodyOrNull(bodies, p.bodyA);
-    const Vec3 onA = toWorld(a, p.localA);
-    const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
-    Contact c;
-    c.bodyA = p.bodyA;
-    c.bodyB = p.bodyB;
-    c.point = (onA + onB) / 2;
-    c.normal = p.normal;
-    c.depth = -p.normal.dot(onA - onB);
-    c.friction = p.friction;
-    c.restitution = p.restitution;
-    c.approachVelocity = p.approachVelocity;
-    if (p.frictionDirection) c.frictionDirection = Vec3(a->orientation * *p.frictionDirection);
-    return c;
-}
-
 Real currentDepth(const ContactPoint& p, std::span<const RigidBody> bodies) {
     const Vec3 onA = toWorld(bodyOrNull(bodies, p.bodyA), p.localA);
     const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);

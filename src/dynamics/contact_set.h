@@ -4,8 +4,9 @@
 // The collision world reports manifolds at the start-of-step poses. Each point is kept as the two
 // surface points it joins, pA on A and pB on B, in their body frames (world frame for the static
 // world), and the manifold normal n (world, B → A), fixed for the step. Wherever the bodies have
-// moved since, the separation is n·(pA − pB) and the contact point their midpoint. The position
-// projection and the penetration report read contacts this way, without another collision query.
+// moved since, the separation is n·(pA − pB), and each body is pushed at its own point. The
+// position projection and the penetration report read contacts this way, without another
+// collision query.
 
 #include "af/collision/collision_world.h"
 #include "af/dynamics/contact.h"
@@ -51,13 +52,12 @@ inline Vec3 toWorld(const RigidBody* body, const Vec3& local) {
 
 }  // namespace contact_detail
 
-// The contact at the bodies' current poses.
-Contact currentContact(const ContactPoint& point, std::span<const RigidBody> bodies);
-// Its depth alone (currentContact(point, bodies).depth, bit for bit), for callers that need no more.
+// The point's depth at the bodies' current poses: −n·(pA − pB).
 Real currentDepth(const ContactPoint& point, std::span<const RigidBody> bodies);
-// Appends every point's rows, and one key per row (the point's key and the row's place): the
-// rows writeContactRows(currentContact(point, bodies), ...) appends, bit for bit.
-// inverseInertiaWorld: each body's RigidBody::inverseInertiaWorld, indexed as bodies.
+// Appends every point's rows at the bodies' current poses, and one key per row (the point's key
+// and the row's place). The rows push A at pA and B at pB, so that J is exactly the derivative of
+// the normal row's C = n·(pA − pB) for the step's n (contact_rows.cpp). inverseInertiaWorld: each
+// body's RigidBody::inverseInertiaWorld, indexed as bodies.
 void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
                       std::span<const Mat3> inverseInertiaWorld, const ContactSettings& settings, ConstraintRows& rows,
                       std::vector<std::uint64_t>& keys);
