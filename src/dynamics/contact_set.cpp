@@ -1,6 +1,7 @@
 #include "contact_set.h"
 
 #include <algorithm>
+#include <array>
 
 namespace af {
 
@@ -38,8 +39,15 @@ void ContactSet::gather(const std::vector<BodyContact>& manifolds, std::span<con
         const RigidBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
         const RigidBody* b = bodyOrNull(bodies, bodyB);
         const Vec3& n = c.manifold.normal;
-        for (int i = 0; i < c.manifold.count; ++i) {
-            const ManifoldPoint& m = c.manifold.points[static_cast<std::size_t>(i)];
+        // By feature id, not as the manifold lists them (deepest first, which swaps between
+        // equally deep corners of a resting box): rows in the same order step after step.
+        std::array<int, Manifold::kMaxPoints> order{};
+        for (int i = 0; i < c.manifold.count; ++i) order[static_cast<std::size_t>(i)] = i;
+        std::sort(order.begin(), order.begin() + c.manifold.count, [&](int i, int j) {
+            return c.manifold.points[static_cast<std::size_t>(i)].id < c.manifold.points[static_cast<std::size_t>(j)].id;
+        });
+        for (int k = 0; k < c.manifold.count; ++k) {
+            const ManifoldPoint& m = c.manifold.points[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
             ContactPoint& p = points_.emplace_back();
             p.bodyA = c.bodyA;
             p.bodyB = bodyB;

@@ -169,6 +169,31 @@ Real bruteForceDiagonal(const ConstraintRow& row, std::span<const RigidBody> bod
     return j.dot(inverseMass * j);
 }
 
+// A resting box's manifold lists its equally deep corners deepest first, in whatever order
+// rounding puts them; the points, and so the rows and the warm-start keys, come in one order.
+TEST(ContactRows, GatheredPointsKeepOneOrderWhateverOrderTheManifoldListsThem) {
+    Random random;
+    const std::vector<RigidBody> bodies = randomBodies(random, 2);
+    const std::vector<BodyMaterial> materials(2, BodyMaterial{0.5, 0, std::nullopt});
+    BodyContact contact;
+    contact.bodyA = 0;
+    contact.bodyB = 1;
+    contact.manifold.normal = random.unit();
+    contact.manifold.count = 4;
+    for (std::uint32_t k = 0; k < 4; ++k) contact.manifold.points[k] = {random.vector(10), 0.01, 40 - 7 * k};
+    ContactSet first, second;
+    first.gather({contact}, bodies, materials);
+    std::swap(contact.manifold.points[0], contact.manifold.points[2]);
+    std::swap(contact.manifold.points[1], contact.manifold.points[3]);
+    second.gather({contact}, bodies, materials);
+    ASSERT_EQ(first.size(), 4u);
+    ASSERT_EQ(second.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(first.points()[i].key, second.points()[i].key);
+        EXPECT_EQ(first.points()[i].localA, second.points()[i].localA);
+    }
+}
+
 TEST(ContactRows, SoftnessIsRelativeCfmTimesTheRowsOwnEffectiveInverseMass) {
     Random random;
     const std::vector<RigidBody> bodies = randomBodies(random, 4);
