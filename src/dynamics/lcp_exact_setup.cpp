@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace af {
@@ -202,10 +203,18 @@ void LcpExactSolver::Impl::removeFromClamped(int p, Slot to) {
     // the removed row at nC − 1, the first position after the shrunk clamped set.
     const std::size_t sn = static_cast<std::size_t>(n);
     if (p + 1 < nC) {
-        std::rotate(a.begin() + p * sn, a.begin() + (p + 1) * sn, a.begin() + nC * sn);
+        // Rotation by one as a saved entry and a memmove: std::rotate's generic cycle of swaps
+        // cost more than the factor's own update.
+        const std::size_t moved = static_cast<std::size_t>(nC - p - 1);
+        Real* const       rowP = a.data() + p * sn;
+        std::copy_n(rowP, sn, scratch.data());
+        std::memmove(rowP, rowP + sn, sizeof(Real) * moved * sn);
+        std::copy_n(scratch.data(), sn, a.data() + (nC - 1) * sn);
         for (std::size_t r = 0; r < sn; ++r) {
-            Real* row = a.data() + r * sn;
-            std::rotate(row + p, row + p + 1, row + nC);
+            Real* const row = a.data() + r * sn;
+            const Real  entry = row[p];
+            std::memmove(row + p, row + p + 1, sizeof(Real) * moved);
+            row[nC - 1] = entry;
         }
         auto rot = [&](auto& v) { std::rotate(v.begin() + p, v.begin() + p + 1, v.begin() + nC); };
         rot(x);
