@@ -19,8 +19,10 @@
 //
 // A coupled problem whose guess does not hold in the first pass tries the frozen-box phase
 // (frictionBoxPasses) before the coupled passes start over: friction boxes frozen at
-// mu·|x_normal| of the guess, then of each answer, each pass a plain boxed LCP warm-started from
-// the last pattern. Plain Dantzig on a convex problem never stalls, and when the boxes stop
+// mu·|x_normal| of where that first pass got to (its repaired pattern, less the rows its check
+// released, and its impulses), then of each answer, each pass a plain boxed LCP warm-started from
+// the last pattern. The first pass starts from the caller's guess and has repaired what single
+// pivots could; a guess a step old is usually further off. Plain Dantzig on a convex problem never stalls, and when the boxes stop
 // moving the answer is complementary with the coupled bounds as well. The boxes converge only
 // linearly, so once a pass keeps the pattern it started from, or the passes run out, the
 // coupled passes take over from that pattern (usually in one pass, no pivots).
@@ -100,6 +102,7 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
             // The guess did not hold: look for the pattern with frozen boxes, then start over.
             tryFrozenBoxes = false;
             earlierPivots += s.pivots;
+            s.saveGuess(outX, ioStates);
             const LcpResult frozen = solveWithFrozenBoxes(problem, outX, ioStates);
             if (frozen.status == LcpStatus::Solved) {
                 LcpResult settled = frozen;

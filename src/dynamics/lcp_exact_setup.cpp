@@ -264,6 +264,23 @@ void LcpExactSolver::Impl::release(int p) {
     slot[nP] = Slot::Unprocessed;
 }
 
+void LcpExactSolver::Impl::saveGuess(std::span<Real> outX, std::span<LcpRowState> outStates) const {
+    for (int p = 0; p < n; ++p) {
+        const int r = perm[p];
+        outX[r] = x[p];
+        LcpRowState state = LcpRowState::Unknown;
+        switch (slot[p]) {
+            case Slot::Clamped:
+            case Slot::Held: state = LcpRowState::Free; break;
+            case Slot::AtLower: state = LcpRowState::AtLower; break;
+            case Slot::AtUpper: state = LcpRowState::AtUpper; break;
+            case Slot::Failed:
+            case Slot::Unprocessed: break;
+        }
+        outStates[r] = state;
+    }
+}
+
 void LcpExactSolver::Impl::finish(const LcpProblem& problem, std::span<Real> outX,
                                   std::span<LcpRowState> ioStates, LcpResult& result,
                                   LcpStatus status) {

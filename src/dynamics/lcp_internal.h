@@ -133,6 +133,8 @@ struct LcpExactSolver::Impl {
     void removeFromClamped(int p, Slot to);  // factor removal + rotation to position nC
     bool addToClamped(int p, const Real* forwardSolved);  // swap p to nC and append; false: singular
     void release(int p);                    // processed → unprocessed, keeping x in its box
+    // The current impulses and pattern as a guess in original row order (unprocessed rows: Unknown).
+    void saveGuess(std::span<Real> outX, std::span<LcpRowState> outStates) const;
     void finish(const LcpProblem& problem, std::span<Real> outX, std::span<LcpRowState> ioStates,
                 LcpResult& result, LcpStatus status);
 
