@@ -71,67 +71,73 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
 
     // Pivots of the attempts before the last load: a guess that did not hold, the frozen boxes.
     int  earlierPivots = 0;
-    bool tryFrozenBoxes = !problem.findex.empty() && !ioStates.empty() && s.settings.frictionBoxPasses > 0;
+    const bool tryFrozenBoxes =
+        !problem.findex.empty() && !ioStates.empty() && s.settings.frictionBoxPasses > 0;
 
     s.load(problem, ioStates);
     LcpStatus status = LcpStatus::Solved;
+    if (!s.settle(tryFrozenBoxes, status, result.couplingPasses)) {
+        // The guess did not hold: look for the pattern with frozen boxes, then start over.
+        earlierPivots += s.pivots;
+        s.saveGuess(outX, ioStates);
+        const LcpResult frozen = solveWithFrozenBoxes(problem, outX, ioStates);
+        if (frozen.status == LcpStatus::Solved) {
+            LcpResult settled = frozen;
+            settled.pivots += earlierPivots;
+            return settled;
+        }
+        earlierPivots += frozen.pivots;
+        s.load(problem, ioStates);
+        s.settle(false, status, result.couplingPasses);
+    }
+    s.finish(problem, outX, ioStates, result, status);
+    result.pivots += earlierPivots;
+    return result;
+}
+
+bool LcpExactSolver::Impl::settle(bool stopIfFirstFails, LcpStatus& status, int& passes) {
+    status = LcpStatus::Solved;
     for (int pass = 1;; ++pass) {
-        result.couplingPasses = pass;
-        s.solvePattern(true);
+        passes = pass;
+        solvePattern(true);
         if (pass == 1) {
             // Single principal pivots on the worst row, while the number of wrong rows does not
             // grow: a nearly right warm start is repaired in about one pivot per changed row.
-            int previous = s.n + 1;
+            int previous = n + 1;
             for (int round = 0; round < kMaxFlipRounds; ++round) {
-                const int wrong = s.checkPattern(true, true);
+                const int wrong = checkPattern(true, true);
                 if (wrong == 0) {
                     break;
                 }
-                s.solvePattern(true);
+                solvePattern(true);
                 if (wrong > previous) {
                     break;
                 }
                 previous = wrong;
             }
         }
-        int released = s.checkPattern(true, false);
-        if (released == 0 && s.nP == s.n) {
-            break;
+        int released = checkPattern(true, false);
+        if (released == 0 && nP == n) {
+            return true;
         }
-        if (tryFrozenBoxes) {
-            // The guess did not hold: look for the pattern with frozen boxes, then start over.
-            tryFrozenBoxes = false;
-            earlierPivots += s.pivots;
-            s.saveGuess(outX, ioStates);
-            const LcpResult frozen = solveWithFrozenBoxes(problem, outX, ioStates);
-            if (frozen.status == LcpStatus::Solved) {
-                LcpResult settled = frozen;
-                settled.pivots += earlierPivots;
-                return settled;
-            }
-            earlierPivots += frozen.pivots;
-            s.load(problem, ioStates);
-            pass = 0;
-            continue;
+        if (stopIfFirstFails) {
+            return false;
         }
-        if (pass >= s.settings.maxCouplingPasses) {
+        if (pass >= settings.maxCouplingPasses) {
             status = LcpStatus::NotConverged;  // released rows stay unprocessed: reported failed
-            break;
+            return true;
         }
         while (released > 0) {
-            s.solvePattern(true);
-            released = s.checkPattern(true, false);
+            solvePattern(true);
+            released = checkPattern(true, false);
         }
-        s.pivotUnprocessed(pass);
-        if (s.pivotLimitHit) {
-            s.solvePattern(false);
+        pivotUnprocessed(pass);
+        if (pivotLimitHit) {
+            solvePattern(false);
             status = LcpStatus::PivotLimit;
-            break;
+            return true;
         }
     }
-    s.finish(problem, outX, ioStates, result, status);
-    result.pivots += earlierPivots;
-    return result;
 }
 
 // Status Solved when the boxes settle (residual against the coupled problem); otherwise
@@ -175,9 +181,21 @@ LcpResult LcpExactSolver::solveWithFrozenBoxes(const LcpProblem& problem, std::s
             break;
         }
         s.boxPattern.assign(s.boxStates.begin(), s.boxStates.end());
+        // Each pass but the first goes on from the last one's factorised pattern with the new
+        // boxes: the pattern that loading its states again would give (in another position
+        // order, so ties may pivot differently), without a copy of A and a factorisation from
+        // scratch.
+        if (pass == 0) {
+            s.load(frozen, s.boxStates);
+        } else {
+            s.rebox(s.boxLo, s.boxHi);
+        }
+        LcpResult r;
+        LcpStatus status = LcpStatus::Solved;
+        s.settle(false, status, r.couplingPasses);
         // The frozen problems' residuals are not the answer's: only the final one is computed.
         const bool residual = std::exchange(s.settings.computeResidual, false);
-        const LcpResult r = solve(frozen, x, s.boxStates);
+        s.finish(frozen, x, s.boxStates, r, status);
         s.settings.computeResidual = residual;
         result.pivots += r.pivots;
         // A pattern that held through a pass (the guess's included) is the coupled one, most

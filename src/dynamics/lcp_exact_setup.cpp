@@ -153,6 +153,17 @@ void LcpExactSolver::Impl::load(const LcpProblem& problem, std::span<const LcpRo
     buildInitialFactor(counts[kClampedGuess]);
 }
 
+void LcpExactSolver::Impl::rebox(std::span<const Real> newLo, std::span<const Real> newHi) {
+    for (int p = 0; p < n; ++p) {
+        lo[p] = newLo[perm[p]];
+        hi[p] = newHi[perm[p]];
+    }
+    pivots = 0;
+    pivotLimitHit = false;
+    order = 0;
+    failed.clear();
+}
+
 void LcpExactSolver::Impl::buildInitialFactor(int nCandidates) {
     // A candidate that depends on those before it cannot be factorised: it moves behind the
     // candidates and is held at its start value; the check after the first solve decides whether

@@ -129,6 +129,9 @@ struct LcpExactSolver::Impl {
     void reserve(int n);
     void load(const LcpProblem& problem, std::span<const LcpRowState> warm);
     void buildInitialFactor(int nCandidates);
+    // New bounds (in original row order) for a loaded problem without coupling; the pattern,
+    // its factorisation and the pivot order stay, the per-solve counts start again.
+    void rebox(std::span<const Real> newLo, std::span<const Real> newHi);
     void swapPositions(int p, int q);
     void removeFromClamped(int p, Slot to);  // factor removal + rotation to position nC
     bool addToClamped(int p, const Real* forwardSolved);  // swap p to nC and append; false: singular
@@ -141,6 +144,11 @@ struct LcpExactSolver::Impl {
     bool coupled(int p) const { return source[p] >= 0; }
     Real tolX(Real bound) const;
     Real couplingBound(int p) const;  // mu·|x_source|
+
+    // lcp_exact.cpp: solve-check-pivot passes from the loaded state until a pattern holds.
+    // Returns false, before any pivoting, when stopIfFirstFails and the first pass's check fails;
+    // otherwise true, with the status and the passes taken.
+    bool settle(bool stopIfFirstFails, LcpStatus& status, int& passes);
 
     // lcp_exact_pattern.cpp
     void solvePattern(bool tieFriction);
