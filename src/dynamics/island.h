@@ -88,7 +88,8 @@ private:
     void projectPositions(IslandContext& context, bool jointErrorsAtPoses);
     bool moveWhileImproving(Real& violation, IslandContext& context);
     LcpStatus solvePositions();
-    bool solvePositionsWithTree(IslandContext& context);
+    bool solvePositionsWithTree(IslandContext& context, Real violation);
+    bool putBackViolated();
     Real largestViolation() const;
     // Beyond exactRowLimit rows of a pivoting solve: all rows for the dense solve, the rows
     // outside the joint trees' equality rows for the tree solver.
@@ -146,6 +147,13 @@ private:
     ShakeCorrection shake_;
     std::vector<RigidBody> beforeShake_;
     std::vector<RigidBody> beforeProjection_;
+    // Rows solvePositionsWithTree leaves out of its LCP, with their upper bounds.
+    struct HeldRow {
+        std::size_t row;
+        Real hi;
+    };
+    std::vector<HeldRow> leftOut_;
+    std::vector<Vec3> shiftLinear_, shiftAngular_;
     WarmStartCache velocityCache_;
     WarmStartCache positionCache_;  // the last position pass of this island (this step or before)
     std::vector<Real> frozenLo_, frozenHi_, pgsAnswer_;
