@@ -107,6 +107,7 @@ bool LcpExactSolver::Impl::settle(bool stopIfFirstFails, LcpStatus& status, int&
     for (int pass = 1;; ++pass) {
         passes = pass;
         solvePattern(true);
+        bool checked = false;  // the last check found nothing wrong with the current x
         if (pass == 1) {
             // Single principal pivots on the worst row, while the number of wrong rows does not
             // grow: a nearly right warm start is repaired in about one pivot per changed row.
@@ -114,6 +115,7 @@ bool LcpExactSolver::Impl::settle(bool stopIfFirstFails, LcpStatus& status, int&
             for (int round = 0; round < kMaxFlipRounds; ++round) {
                 const int wrong = checkPattern(true, true);
                 if (wrong == 0) {
+                    checked = pending.empty();
                     break;
                 }
                 solvePattern(true);
@@ -123,7 +125,7 @@ bool LcpExactSolver::Impl::settle(bool stopIfFirstFails, LcpStatus& status, int&
                 previous = wrong;
             }
         }
-        int released = checkPattern(true, false);
+        int released = checked ? 0 : checkPattern(true, false);
         if (released == 0 && nP == n) {
             return true;
         }

@@ -59,14 +59,6 @@ void LcpExactSolver::Impl::reserve(int size) {
     capacity = size;
 }
 
-Real LcpExactSolver::Impl::tolX(Real bound) const {
-    return tolRel * std::max(Real(1), std::abs(bound));
-}
-
-Real LcpExactSolver::Impl::couplingBound(int p) const {
-    return mu[p] * std::abs(x[posOf[source[p]]]);
-}
-
 void LcpExactSolver::Impl::load(const LcpProblem& problem, std::span<const LcpRowState> warm) {
     n = problem.size;
     reserve(n);

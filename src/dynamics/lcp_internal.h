@@ -14,6 +14,8 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -142,8 +144,8 @@ struct LcpExactSolver::Impl {
                 LcpResult& result, LcpStatus status);
 
     bool coupled(int p) const { return source[p] >= 0; }
-    Real tolX(Real bound) const;
-    Real couplingBound(int p) const;  // mu·|x_source|
+    Real tolX(Real bound) const { return tolRel * std::max(Real(1), std::abs(bound)); }
+    Real couplingBound(int p) const { return mu[p] * std::abs(x[posOf[source[p]]]); }  // mu·|x_source|
 
     // lcp_exact.cpp: solve-check-pivot passes from the loaded state until a pattern holds.
     // Returns false, before any pivoting, when stopIfFirstFails and the first pass's check fails;
