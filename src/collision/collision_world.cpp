@@ -2,6 +2,7 @@
 
 #include "af/collision/narrowphase.h"
 
+#include "plane_contact.h"
 #include "shape_features.h"
 
 #include <algorithm>
@@ -27,25 +28,18 @@ Aabb worldBounds(const ConvexShape& shape, const RigidPose& pose, Real margin) {
 }
 
 // A lower bound of the height of the shape's lowest vertex above the plane (normal · vertex −
-// offset): for a box from its centre and extents, less the rounding by which that can differ from
-// the corners' own heights; for other shapes from the bounding sphere.
-Real heightAbove(const ConvexShape& shape, const RigidPose& pose, const Vec3& sphereCentre, Real radius,
-                 const Plane& plane) {
-    const BoxFeatures& box = shape.features().box;
-    if (!box.valid) {
-        return plane.normal.dot(sphereCentre) - radius - plane.offset;
-    }
-    const Vec3 centre = pose.apply(box.centre);
-    const Vec3 along = box.aligned ? Vec3(pose.rotation.transpose() * plane.normal)
-                                   : Vec3((pose.rotation * box.axes).transpose() * plane.normal);
-    const Real rounding = 1e-12 * (1 + std::abs(plane.offset) + centre.cwiseAbs().sum() + box.half.sum());
-    return plane.normal.dot(centre) - along.cwiseAbs().dot(box.half) - plane.offset - rounding;
+// offset), from its bounding sphere: for shapes too large for smallPlaneContact, which a far plane
+// then spares looking at every vertex.
+Real heightAbove(const Vec3& sphereCentre, Real radius, const Plane& plane) {
+    return plane.normal.dot(sphereCentre) - radius - plane.offset;
 }
 
 }  // namespace
 
 int CollisionWorld::addBody(const Polytope& shape, const CollisionFilter& filter) {
-    Body body{ConvexShape(shape), filter};
+    Body body;
+    body.shape = ConvexShape(shape);
+    body.filter = filter;
     const BoxFeatures& box = body.shape.features().box;
     body.centre = box.valid ? box.centre : body.shape.features().centre;
     for (const Vec3& v : shape.vertices) {
@@ -56,9 +50,12 @@ int CollisionWorld::addBody(const Polytope& shape, const CollisionFilter& filter
 }
 
 void CollisionWorld::excludePair(int a, int b) {
-    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
-    const auto at = std::lower_bound(excluded_.begin(), excluded_.end(), key);
-    if (at == excluded_.end() || *at != key) excluded_.insert(at, key);
+    auto exclude = [&](int body, int other) {
+        std::vector<int>& with = bodies_[static_cast<std::size_t>(body)].excludedWith;
+        if (std::find(with.begin(), with.end(), other) == with.end()) with.push_back(other);
+    };
+    exclude(a, b);
+    exclude(b, a);
 }
 
 int CollisionWorld::addPlane(const Plane& plane, ContentsMask contents) {
@@ -86,8 +83,8 @@ bool CollisionWorld::mayCollide(int a, int b) const {
     const CollisionFilter& fa = bodies_[static_cast<std::size_t>(a)].filter;
     const CollisionFilter& fb = bodies_[static_cast<std::size_t>(b)].filter;
     if (!(fa.clipMask & fb.contents) && !(fb.clipMask & fa.contents)) return false;
-    if (std::binary_search(excluded_.begin(), excluded_.end(), std::pair{std::min(a, b), std::max(a, b)}))
-        return false;
+    const std::vector<int>& excluded = bodies_[static_cast<std::size_t>(a)].excludedWith;
+    if (std::find(excluded.begin(), excluded.end(), b) != excluded.end()) return false;
     if (fa.figure == fb.figure) return fa.selfCollision && fb.selfCollision && !settings_.skipSelfCollision;
     return settings_.figuresCollide;
 }
@@ -98,32 +95,40 @@ bool CollisionWorld::mayCollideWithStatic(int body, int staticShape) const {
     return f.collidesWithStatic && !s.removed && (f.clipMask & s.contents) != 0;
 }
 
-Manifold CollisionWorld::queryPair(int a, int b, const RigidPose& poseA, const RigidPose& poseB, const Vec3& centreA,
-                                   const Vec3& centreB, Real pairMargin) const {
+bool CollisionWorld::queryPair(int a, int b, const RigidPose& poseA, const RigidPose& poseB, const Vec3& centreA,
+                               const Vec3& centreB, Real pairMargin, Manifold& out) const {
     const Body& bodyA = bodies_[static_cast<std::size_t>(a)];
     const Body& bodyB = bodies_[static_cast<std::size_t>(b)];
     // Bounding spheres farther apart than the margin: the query would find nothing.
     const Real reachBoth = (bodyA.radius + bodyB.radius + pairMargin) * (1 + 1e-12);
-    if ((centreA - centreB).squaredNorm() > reachBoth * reachBoth) return {};
-    return collide(bodyA.shape, poseA, bodyB.shape, poseB, pairMargin);
+    if ((centreA - centreB).squaredNorm() > reachBoth * reachBoth) return false;
+    out = collide(bodyA.shape, poseA, bodyB.shape, poseB, pairMargin);
+    return !out.empty();
 }
 
-Manifold CollisionWorld::queryStatic(int a, int s, const RigidPose& pose, const Vec3& centre, const Aabb& bounds,
-                                     Real staticMargin) const {
-    const Static& shape = statics_[static_cast<std::size_t>(s)];
+bool CollisionWorld::queryPlane(int a, const Plane& plane, const RigidPose& pose, Real staticMargin,
+                                Manifold& out) const {
     const Body& body = bodies_[static_cast<std::size_t>(a)];
-    if (shape.isPlane) {
-        if (heightAbove(body.shape, pose, centre, body.radius, shape.plane) > staticMargin) return {};
-        return collideWithPlane(body.shape.polytope(), pose, shape.plane, staticMargin);
+    const Polytope& shape = body.shape.polytope();
+    if (shape.vertices.size() <= std::size_t(collision_detail::kSmallPolytope)) {
+        return collision_detail::smallPlaneContact(body.shape, pose, plane, staticMargin, out);
     }
-    if (!bounds.overlaps(shape.bounds)) return {};
-    return collide(body.shape, pose, shape.shape, RigidPose{}, staticMargin);
+    if (heightAbove(pose.apply(body.centre), body.radius, plane) > staticMargin) return false;
+    out = collideWithPlane(shape, pose, plane, staticMargin);
+    return !out.empty();
+}
+
+bool CollisionWorld::queryBrush(int a, int s, const RigidPose& pose, const Aabb& bounds, Real staticMargin,
+                                Manifold& out) const {
+    const Static& brush = statics_[static_cast<std::size_t>(s)];
+    if (!bounds.overlaps(brush.bounds)) return false;
+    out = collide(bodies_[static_cast<std::size_t>(a)].shape, pose, brush.shape, RigidPose{}, staticMargin);
+    return !out.empty();
 }
 
 void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<const Vec3> moves,
                                   std::span<const Real> reach, Real margin, std::span<const std::uint8_t> awake,
                                   std::vector<BodyContact>& out) {
-    out.clear();
     auto isAwake = [&](int i) { return awake.empty() || awake[static_cast<std::size_t>(i)] != 0; };
     auto at = [](const auto& items, int i) -> decltype(auto) { return items[static_cast<std::size_t>(i)]; };
 
@@ -131,59 +136,73 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
     // whenever the pair can get within its margin.
     boxes_.resize(bodies_.size());
     centres_.resize(bodies_.size());
+    staticMargins_.resize(bodies_.size());
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
-        boxes_[i] = worldBounds(bodies_[i].shape, poses[i], margin + reach[i] + moves[i].norm());
+        staticMargins_[i] = margin + reach[i] + moves[i].norm();
+        boxes_[i] = worldBounds(bodies_[i].shape, poses[i], staticMargins_[i]);
         centres_[i] = poses[i].apply(bodies_[i].centre);
     }
     broadphase_.findPairs(boxes_, pairs_);
 
-    BodyContact contact;
+    // Each query writes into the next slot of `out`, which is kept only when it found points: no
+    // manifold is copied, and once `out` has held as many contacts none is constructed either.
+    std::size_t used = 0;
+    auto slot = [&]() -> BodyContact& {
+        if (out.size() == used) out.emplace_back();
+        return out[used];
+    };
     for (const auto& [a, b] : pairs_) {
         if (!isAwake(a) && !isAwake(b)) continue;
         if (!mayCollide(a, b)) continue;
         const Real pairMargin = margin + at(reach, a) + at(reach, b) + (at(moves, a) - at(moves, b)).norm();
-        contact.manifold = queryPair(a, b, at(poses, a), at(poses, b), at(centres_, a), at(centres_, b), pairMargin);
-        if (contact.manifold.empty()) continue;
+        BodyContact& contact = slot();
+        if (!queryPair(a, b, at(poses, a), at(poses, b), at(centres_, a), at(centres_, b), pairMargin, contact.manifold))
+            continue;
         contact.bodyA = a;
         contact.bodyB = b;
         contact.staticShape = -1;
-        out.push_back(contact);
+        ++used;
     }
     for (int a = 0; a < static_cast<int>(bodies_.size()); ++a) {
         if (!isAwake(a)) continue;
         for (int s = 0; s < static_cast<int>(statics_.size()); ++s) {
             if (!mayCollideWithStatic(a, s)) continue;
-            const Real staticMargin = margin + at(reach, a) + at(moves, a).norm();
-            contact.manifold = queryStatic(a, s, at(poses, a), at(centres_, a), at(boxes_, a), staticMargin);
-            if (contact.manifold.empty()) continue;
+            const Static& shape = at(statics_, s);
+            BodyContact& contact = slot();
+            const bool found = shape.isPlane
+                                   ? queryPlane(a, shape.plane, at(poses, a), at(staticMargins_, a), contact.manifold)
+                                   : queryBrush(a, s, at(poses, a), at(boxes_, a), at(staticMargins_, a), contact.manifold);
+            if (!found) continue;
             contact.bodyA = a;
             contact.bodyB = kStaticWorld;
             contact.staticShape = s;
-            out.push_back(contact);
+            ++used;
         }
     }
+    out.resize(used);
 }
 
 void CollisionWorld::findContactsAgain(std::span<const RigidPose> poses, Real margin,
                                        std::vector<BodyContact>& contacts) const {
-    auto placed = [&](int i) {
-        const Body& body = bodies_[static_cast<std::size_t>(i)];
-        const RigidPose& pose = poses[static_cast<std::size_t>(i)];
-        return std::pair{pose.apply(body.centre), worldBounds(body.shape, pose, margin)};
-    };
+    auto pose = [&](int i) -> const RigidPose& { return poses[static_cast<std::size_t>(i)]; };
+    auto centre = [&](int i) { return pose(i).apply(bodies_[static_cast<std::size_t>(i)].centre); };
     std::size_t kept = 0;
     for (std::size_t k = 0; k < contacts.size(); ++k) {
         BodyContact& c = contacts[k];
-        const auto [centreA, boundsA] = placed(c.bodyA);
-        const RigidPose& poseA = poses[static_cast<std::size_t>(c.bodyA)];
-        if (c.bodyB == kStaticWorld) {
-            c.manifold = queryStatic(c.bodyA, c.staticShape, poseA, centreA, boundsA, margin);
+        bool found = false;
+        if (c.bodyB != kStaticWorld) {
+            found = queryPair(c.bodyA, c.bodyB, pose(c.bodyA), pose(c.bodyB), centre(c.bodyA), centre(c.bodyB), margin,
+                              c.manifold);
+        } else if (const Static& shape = statics_[static_cast<std::size_t>(c.staticShape)]; shape.isPlane) {
+            found = queryPlane(c.bodyA, shape.plane, pose(c.bodyA), margin, c.manifold);
         } else {
-            const RigidPose& poseB = poses[static_cast<std::size_t>(c.bodyB)];
-            c.manifold = queryPair(c.bodyA, c.bodyB, poseA, poseB, centreA, poseB.apply(bodies_[static_cast<std::size_t>(c.bodyB)].centre),
-                                   margin);
+            const Aabb bounds = worldBounds(bodies_[static_cast<std::size_t>(c.bodyA)].shape, pose(c.bodyA), margin);
+            found = queryBrush(c.bodyA, c.staticShape, pose(c.bodyA), bounds, margin, c.manifold);
         }
-        if (!c.manifold.empty()) contacts[kept++] = c;
+        if (found) {
+            if (kept != k) contacts[kept] = c;
+            ++kept;
+        }
     }
     contacts.resize(kept);
 }

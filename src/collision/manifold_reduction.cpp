@@ -15,19 +15,66 @@ Real signedArea(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen:
     return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
 }
 
-}  // namespace
-
-int reduceToFour(std::span<const Candidate> candidates, const Vec3& normal, std::array<int, 4>& picked) {
-    const int n = int(candidates.size());
-    if (n == 0) {
-        return 0;
-    }
+int deepestOf(std::span<const Candidate> candidates) {
     int i0 = 0;
-    for (int i = 1; i < n; ++i) {
+    for (int i = 1; i < int(candidates.size()); ++i) {
         if (candidates[i].depth > candidates[i0].depth) {
             i0 = i;
         }
     }
+    return i0;
+}
+
+// Whether every two of at most four points are farther apart across the plane than twice
+// kDistinct, measured in 3-D without the tangent frame. Within 1e6 units of the working frame's
+// origin, rounding moves these distances, and those reduceByArea measures, by a few 1e-9 units at
+// most, far below kDistinct: where this says yes, reduceByArea finds every point distinct too.
+bool clearlyDistinct(std::span<const Candidate> candidates, const Vec3& normal) {
+    constexpr Real kFar = 1e12;  // squared distance from the origin within which the above holds
+    const int n = int(candidates.size());
+    std::array<Vec3, 4> across;  // each point less its component along the normal
+    for (int i = 0; i < n; ++i) {
+        const Vec3& p = candidates[i].point;
+        if (!(dot3(p, p) <= kFar)) {
+            return false;
+        }
+        across[i] = p - dot3(p, normal) * normal;
+        for (int j = 0; j < i; ++j) {
+            const Vec3 d = across[i] - across[j];
+            if (!(dot3(d, d) > 4 * kDistinct * kDistinct)) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+int reduceToFour(std::span<const Candidate> candidates, const Vec3& normal, std::array<int, 4>& picked) {
+    const int n = int(candidates.size());
+    // A face or corner on a plane gives four points or fewer, all apart: they are the answer, the
+    // deepest first, and the tangent frame reduceByArea works in is not needed.
+    if (n == 0 || n > 4 || !clearlyDistinct(candidates, normal)) {
+        return reduceByArea(candidates, normal, picked);
+    }
+    const int i0 = deepestOf(candidates);
+    picked[0] = i0;
+    int count = 1;
+    for (int i = 0; i < n; ++i) {
+        if (i != i0) {
+            picked[count++] = i;
+        }
+    }
+    return n;
+}
+
+int reduceByArea(std::span<const Candidate> candidates, const Vec3& normal, std::array<int, 4>& picked) {
+    const int n = int(candidates.size());
+    if (n == 0) {
+        return 0;
+    }
+    const int i0 = deepestOf(candidates);
     picked[0] = i0;
 
     // Everything else happens across the contact plane: coordinates along two tangents.

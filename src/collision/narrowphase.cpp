@@ -236,6 +236,7 @@ ConvexShape::ConvexShape() : ConvexShape(Polytope{}) {}
 ConvexShape::ConvexShape(Polytope polytope) : polytope_(std::move(polytope)) {
     auto features = std::make_shared<ShapeFeatures>();
     prepare(polytope_, *features);
+    measureVertexGap(polytope_, *features);
     features_ = std::move(features);
 }
 

@@ -49,11 +49,12 @@ std::pair<Real, Real> interval(const PlacedShape& shape, const Vec3& dir);
 // min over A of normal·a − max over B of normal·b; > 0 when this axis separates them.
 Real separationAlong(const PlacedShape& a, const PlacedShape& b, const Vec3& normal);
 
-// A contact point before reduction, in the working frame.
+// A contact point before reduction, in the working frame. Left uninitialised by default (always
+// made with all three values), so that a query's array of them on the stack costs nothing to set up.
 struct Candidate {
-    Vec3 point = Vec3::Zero();
-    Real depth = 0;
-    std::uint32_t id = 0;
+    Vec3 point;
+    Real depth;
+    std::uint32_t id;
 };
 
 // Per-thread buffers of one query.

@@ -247,6 +247,22 @@ void prepare(const Polytope& polytope, ShapeFeatures& out) {
     describeBox(polytope, out);
 }
 
+void measureVertexGap(const Polytope& polytope, ShapeFeatures& out) {
+    out.vertexGap = out.vertexReach = 0;
+    const std::vector<Vec3>& v = polytope.vertices;
+    if (v.size() < 2 || v.size() > std::size_t(kSmallPolytope)) {
+        return;
+    }
+    Real gap = (v[1] - v[0]).norm();
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        out.vertexReach = std::max(out.vertexReach, v[i].norm());
+        for (std::size_t j = i + 1; j < v.size(); ++j) {
+            gap = std::min(gap, (v[j] - v[i]).norm());
+        }
+    }
+    out.vertexGap = gap;
+}
+
 Real faceArea(const Polytope& polytope, int f) {
     const std::vector<int>& loop = polytope.faces[f].loop;
     Vec3 area = Vec3::Zero();

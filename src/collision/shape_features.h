@@ -65,10 +65,22 @@ struct ShapeFeatures {
     Vec3 centre = Vec3::Zero();      // vertex mean, an interior point for libccd's MPR
     bool flat = false;               // some face has no area: a flat shape or a segment
     BoxFeatures box;
+    // Of a ConvexShape of at most kSmallPolytope vertices (measureVertexGap), the smallest distance
+    // between two of its vertices and the largest from the frame's origin; 0 otherwise, which
+    // tells smallPlaneContact not to use them.
+    Real vertexGap = 0;
+    Real vertexReach = 0;
 };
+
+// A polytope with at most this many vertices (a box) gets the plane contact's shortcuts.
+inline constexpr int kSmallPolytope = 8;
 
 // Fills `out` from `polytope` (no allocation once `out` has held a shape at least as large).
 void prepare(const Polytope& polytope, ShapeFeatures& out);
+
+// Fills vertexGap and vertexReach of a polytope of at most kSmallPolytope vertices (quadratic in
+// them: done once per ConvexShape, not in prepare(), which queries of unprepared shapes repeat).
+void measureVertexGap(const Polytope& polytope, ShapeFeatures& out);
 
 // Twice the area of face f (Newell's formula).
 Real faceArea(const Polytope& polytope, int f);

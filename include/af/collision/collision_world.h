@@ -104,6 +104,7 @@ private:
         CollisionFilter filter;
         Vec3 centre = Vec3::Zero();
         Real radius = 0;
+        std::vector<int> excludedWith;  // bodies joined to this one (excludePair), a handful at most
     };
     struct Static {
         ConvexShape shape;  // world space; empty for a plane
@@ -114,19 +115,21 @@ private:
         bool removed = false;
     };
 
-    Manifold queryPair(int a, int b, const RigidPose& poseA, const RigidPose& poseB, const Vec3& centreA,
-                       const Vec3& centreB, Real pairMargin) const;
-    // bounds: the body's box grown by the margin (for static brushes).
-    Manifold queryStatic(int a, int s, const RigidPose& pose, const Vec3& centre, const Aabb& bounds,
-                         Real staticMargin) const;
+    // Each query writes the manifold it finds into `out` and returns whether it has points; `out`
+    // is left unspecified when not.
+    bool queryPair(int a, int b, const RigidPose& poseA, const RigidPose& poseB, const Vec3& centreA,
+                   const Vec3& centreB, Real pairMargin, Manifold& out) const;
+    bool queryPlane(int a, const Plane& plane, const RigidPose& pose, Real staticMargin, Manifold& out) const;
+    // bounds: the body's box grown by the margin.
+    bool queryBrush(int a, int s, const RigidPose& pose, const Aabb& bounds, Real staticMargin, Manifold& out) const;
 
     CollisionSettings settings_;
     std::vector<Body> bodies_;
     std::vector<Static> statics_;
-    std::vector<std::pair<int, int>> excluded_;  // sorted, (low, high)
     SweepAndPrune broadphase_;
     std::vector<Aabb> boxes_;
     std::vector<Vec3> centres_;  // world centres of the bounding spheres, per findContacts call
+    std::vector<Real> staticMargins_;  // each body's margin against the static world, likewise
     std::vector<std::pair<int, int>> pairs_;
 };
 
