@@ -145,12 +145,12 @@ void LcpExactSolver::Impl::solvePattern(bool tieFriction) {
         }
     }
     int nTied = 0;
-    if (tieFriction) {
+    if (tieFriction && anyCoupled) {
         nTied = markTies(-1, 1);
     } else {
         std::fill(tie.begin() + nC, tie.begin() + nP, Real(0));
     }
-    for (int p = nC; p < nP; ++p) {
+    for (int p = nC; p < nP && anyCoupled; ++p) {
         if (!coupled(p) || !atBound(slot[p])) {
             continue;
         }
@@ -189,7 +189,7 @@ void LcpExactSolver::Impl::solvePattern(bool tieFriction) {
 }
 
 int LcpExactSolver::Impl::checkPattern(bool tieFriction, bool flip) {
-    if (tieFriction) {
+    if (tieFriction && anyCoupled) {
         for (int p = 0; p < nP; ++p) {
             if (coupled(p) && (slot[p] == Slot::Clamped || atBound(slot[p]))) {
                 const Real bound = couplingBound(p);

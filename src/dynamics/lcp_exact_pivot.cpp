@@ -150,10 +150,12 @@ bool LcpExactSolver::Impl::driveRow(int i) {
     // it is (as ODE freezes all of them) for the rest of the drive; if zero steps go on, the whole
     // drive continues untied, plain Dantzig on a positive definite matrix, which progresses.
     // The pattern check after the pass re-ties whatever was frozen.
-    bool untied = false;
+    bool untied = !anyCoupled;  // without coupling, plain Dantzig from the start
     bool frozenBox = false;  // also row i's own box, once it overtook x_i (see ReachBound)
     int  zeroSteps = 0;
-    std::fill_n(frozen.begin(), n, std::uint8_t(0));
+    if (anyCoupled) {
+        std::fill_n(frozen.begin(), n, std::uint8_t(0));
+    }
 
     for (;;) {
         const bool atLo = x[i] <= lo[i];
@@ -178,7 +180,7 @@ bool LcpExactSolver::Impl::driveRow(int i) {
         }
         // A friction row shut at [0, 0] by a zero normal may sit on either side; let it sit on
         // the side its w allows, so that it is valid when the normal opens its box.
-        for (int k = nC; k < nP; ++k) {
+        for (int k = nC; k < nP && anyCoupled; ++k) {
             if (coupled(k) && atBound(slot[k]) && lo[k] == hi[k]) {
                 slot[k] = w[k] >= 0 ? Slot::AtLower : Slot::AtUpper;
             }
@@ -272,7 +274,7 @@ bool LcpExactSolver::Impl::driveRow(int i) {
         }
         // A normal whose sign would flip changes how its friction bounds move: stop there and
         // look again (a contact normal, bounded below by 0, hits its bound first instead).
-        for (int p = 0; p <= nP; ++p) {
+        for (int p = 0; p <= nP && anyCoupled; ++p) {
             const bool inPlay = p == i || (!untied && (p < nC || (p < nP && tie[p] != 0)));
             if (!inPlay || !coupled(p) || frozen[p]) {
                 continue;

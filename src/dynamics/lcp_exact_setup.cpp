@@ -98,12 +98,14 @@ void LcpExactSolver::Impl::load(const LcpProblem& problem, std::span<const LcpRo
     // Per-position data. Coupled bounds are unknown until their normal is solved: [0, 0] for now.
     Real bInf = 0;
     Real aMax = 0;
+    anyCoupled = false;
     for (int p = 0; p < n; ++p) {
         const int r = perm[p];
         b[p] = problem.b[r];
         bInf = std::max(bInf, std::abs(b[p]));
         source[p] = hasCoupling ? problem.findex[r] : -1;
         mu[p] = hasCoupling && source[p] >= 0 ? problem.mu[r] : 0;
+        anyCoupled = anyCoupled || source[p] >= 0;
         lo[p] = source[p] >= 0 ? 0 : problem.lo[r];
         hi[p] = source[p] >= 0 ? 0 : problem.hi[r];
         w[p] = 0;

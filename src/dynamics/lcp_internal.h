@@ -100,6 +100,7 @@ struct LcpExactSolver::Impl {
     std::vector<int>     perm;    // position → original row
     std::vector<int>     posOf;   // original row → position
     std::vector<int>     source;  // position → original row of the bound source, or −1
+    bool                 anyCoupled = false;  // some source ≥ 0: the coupling loops have work
     std::vector<Slot>    slot;
     std::vector<std::uint8_t> frozen;  // position → box frozen for the current drive
     lcp::Ldlt            factor;  // of a[C][C]
