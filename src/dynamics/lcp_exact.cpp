@@ -22,8 +22,9 @@
 // mu·|x_normal| of where that first pass got to (its repaired pattern, less the rows its check
 // released, and its impulses), then of each answer, each pass a plain boxed LCP warm-started from
 // the last pattern. The first pass starts from the caller's guess and has repaired what single
-// pivots could; a guess a step old is usually further off. Plain Dantzig on a convex problem never stalls, and when the boxes stop
-// moving the answer is complementary with the coupled bounds as well. The boxes converge only
+// pivots could; a guess a step old is usually further off. Plain Dantzig on a convex problem
+// never stalls, and when the boxes stop moving the answer is complementary with the coupled
+// bounds as well. The boxes converge only
 // linearly, so once a pass keeps the pattern it started from, the boxes stop closing in, or the
 // passes run out, the coupled passes take over from that pattern (usually in one pass, no
 // pivots).
