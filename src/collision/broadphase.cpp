@@ -40,8 +40,9 @@ int axisOfLargestSpread(std::span<const Aabb> boxes) {
 void SweepAndPrune::findPairs(std::span<const Aabb> boxes, std::vector<std::pair<int, int>>& pairs) {
     pairs.clear();
     if (boxes.empty()) return;
-    if (order_.size() != boxes.size()) {
-        order_.resize(boxes.size());
+    const std::size_t n = boxes.size();
+    if (order_.size() != n) {
+        order_.resize(n);
         std::iota(order_.begin(), order_.end(), 0);
     }
     axis_ = axisOfLargestSpread(boxes);
@@ -51,21 +52,43 @@ void SweepAndPrune::findPairs(std::span<const Aabb> boxes, std::vector<std::pair
         return ka < kb || (ka == kb && a < b);
     };
     // Insertion sort: nearly sorted from the previous call when bodies move coherently.
-    for (std::size_t i = 1; i < order_.size(); ++i) {
+    for (std::size_t i = 1; i < n; ++i) {
         const int key = order_[i];
         std::size_t j = i;
         for (; j > 0 && before(key, order_[j - 1]); --j) order_[j] = order_[j - 1];
         order_[j] = key;
     }
-    for (std::size_t i = 0; i < order_.size(); ++i) {
+    // Each pair goes to the list of its lower body (a counting sort by it), so that the lists read
+    // in body order give the pairs sorted once each list is, and the lists are short.
+    partners_.clear();
+    firstPartner_.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
         const Aabb& a = boxes[static_cast<std::size_t>(order_[i])];
-        for (std::size_t j = i + 1; j < order_.size(); ++j) {
+        for (std::size_t j = i + 1; j < n; ++j) {
             const Aabb& b = boxes[static_cast<std::size_t>(order_[j])];
             if (b.min[axis] > a.max[axis]) break;
-            if (a.overlaps(b)) pairs.emplace_back(std::min(order_[i], order_[j]), std::max(order_[i], order_[j]));
+            if (a.overlaps(b)) {
+                const auto [low, high] = std::minmax(order_[i], order_[j]);
+                partners_.emplace_back(low, high);
+                ++firstPartner_[static_cast<std::size_t>(low) + 1];
+            }
         }
     }
-    std::sort(pairs.begin(), pairs.end());
+    for (std::size_t i = 0; i < n; ++i) firstPartner_[i + 1] += firstPartner_[i];
+    pairs.resize(partners_.size());
+    for (const auto& pair : partners_) {
+        pairs[static_cast<std::size_t>(firstPartner_[static_cast<std::size_t>(pair.first)]++)] = pair;
+    }
+    // firstPartner_[a] is now where a's list ends and a + 1's begins: sort each by its higher body.
+    auto byHigher = [](const std::pair<int, int>& x, const std::pair<int, int>& y) { return x.second < y.second; };
+    for (std::size_t a = 0, begin = 0; a < n; ++a) {
+        const std::size_t end = static_cast<std::size_t>(firstPartner_[a]);
+        if (end - begin > 1) {
+            std::sort(pairs.begin() + static_cast<std::ptrdiff_t>(begin), pairs.begin() + static_cast<std::ptrdiff_t>(end),
+                      byHigher);
+        }
+        begin = end;
+    }
 }
 
 }  // namespace af

@@ -15,15 +15,16 @@ namespace {
 using collision_detail::BoxFeatures;
 
 // The box around a body's shape at `pose`, grown by `margin`: for a box from its centre and
-// extents (|R| · half), which is what the corners give, without placing eight of them.
-Aabb worldBounds(const ConvexShape& shape, const RigidPose& pose, Real margin) {
+// extents (|R| · half), which is what the corners give, without placing eight of them. `centre`
+// is the box's centre placed by `pose` (for other shapes it is not used).
+Aabb worldBounds(const ConvexShape& shape, const RigidPose& pose, const Vec3& centre, Real margin) {
     const BoxFeatures& box = shape.features().box;
     if (!box.valid) {
         return boundsOf(shape.polytope(), pose, margin);
     }
-    const Vec3 centre = pose.apply(box.centre);
-    const Mat3 axes = box.aligned ? pose.rotation : Mat3(pose.rotation * box.axes);
-    const Vec3 extent = axes.cwiseAbs() * box.half + Vec3::Constant(margin);
+    const Vec3 extent = (box.aligned ? pose.rotation.cwiseAbs() * box.half
+                                     : Mat3(pose.rotation * box.axes).cwiseAbs() * box.half) +
+                        Vec3::Constant(margin);
     return {centre - extent, centre + extent};
 }
 
@@ -139,8 +140,8 @@ void CollisionWorld::findContacts(std::span<const RigidPose> poses, std::span<co
     staticMargins_.resize(bodies_.size());
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
         staticMargins_[i] = margin + reach[i] + moves[i].norm();
-        boxes_[i] = worldBounds(bodies_[i].shape, poses[i], staticMargins_[i]);
-        centres_[i] = poses[i].apply(bodies_[i].centre);
+        centres_[i] = poses[i].apply(bodies_[i].centre);  // a box's centre (addBody)
+        boxes_[i] = worldBounds(bodies_[i].shape, poses[i], centres_[i], staticMargins_[i]);
     }
     broadphase_.findPairs(boxes_, pairs_);
 
@@ -196,7 +197,8 @@ void CollisionWorld::findContactsAgain(std::span<const RigidPose> poses, Real ma
         } else if (const Static& shape = statics_[static_cast<std::size_t>(c.staticShape)]; shape.isPlane) {
             found = queryPlane(c.bodyA, shape.plane, pose(c.bodyA), margin, c.manifold);
         } else {
-            const Aabb bounds = worldBounds(bodies_[static_cast<std::size_t>(c.bodyA)].shape, pose(c.bodyA), margin);
+            const Aabb bounds =
+                worldBounds(bodies_[static_cast<std::size_t>(c.bodyA)].shape, pose(c.bodyA), centre(c.bodyA), margin);
             found = queryBrush(c.bodyA, c.staticShape, pose(c.bodyA), bounds, margin, c.manifold);
         }
         if (found) {

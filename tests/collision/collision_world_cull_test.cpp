@@ -1,5 +1,5 @@
 // CollisionWorld::findContacts skips queries that cannot find anything (bounding boxes, bounding
-// spheres, a box's lowest corner above a plane): its output must be what querying every allowed
+// spheres) and takes boxes on planes by its own path: its output must be what querying every allowed
 // pair directly gives, on many random scenes. findContactsAgain, which queries only the pairs an
 // earlier search found, must give the whole search's answer after moves too small to bring other
 // pairs within the margin.

@@ -23,7 +23,8 @@ struct Aabb {
     Vec3 max = Vec3::Zero();
 
     bool overlaps(const Aabb& other) const {
-        return (min.array() <= other.max.array()).all() && (other.min.array() <= max.array()).all();
+        return min.x() <= other.max.x() && other.min.x() <= max.x() && min.y() <= other.max.y() &&
+               other.min.y() <= max.y() && min.z() <= other.max.z() && other.min.z() <= max.z();
     }
 };
 
@@ -38,6 +39,8 @@ public:
 private:
     std::vector<int> order_;  // box indices by min along axis_ (kept between calls)
     int axis_ = 0;
+    std::vector<std::pair<int, int>> partners_;  // per call: the pairs as found
+    std::vector<int> firstPartner_;              // per call: where each body's pairs go in the output
 };
 
 }  // namespace af
