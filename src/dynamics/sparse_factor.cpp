@@ -51,11 +51,13 @@ bool SparseRowFactor::analyse(std::span<const ConstraintRow> rows, std::span<con
         if (!inRange || (r.bodyA == r.bodyB && r.bodyA != kWorldBody)) {
             groupKeys_.clear();
             analysed_ = false;
+            structureKept_ = false;
             return false;
         }
         keys[i] = pairKey(dynamic(r.bodyA), dynamic(r.bodyB));
         same = same && keys[i] == rowKey_[i];
     }
+    structureKept_ = same;
     if (same) return true;
     analysed_ = true;
     rowKey_.assign(keys.begin(), keys.end());

@@ -36,6 +36,9 @@ public:
     // Groups the rows and orders the groups. False (and the factor unusable) for a row that joins
     // a body to itself or names a body out of range.
     bool analyse(std::span<const ConstraintRow> rows, std::span<const RigidBody> bodies);
+    // Whether the last analyse() met the body pairs of the one before, in the same order: a
+    // factorisation made since that one still has the rows' places.
+    bool structureKept() const { return structureKept_; }
     // Factorises A restricted to the rows with free[i] != 0 (rows as given to analyse, with their
     // responses M⁻¹Jᵀ and CFM). False if a pivot is not clearly positive.
     bool factor(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
@@ -87,6 +90,7 @@ private:
     std::vector<int> bodyStart_, bodyRows_;  // rows touching each dynamic body, ascending
     std::vector<int> fill_;                  // scratch
     bool analysed_ = false;                  // rowKey_ and what follows from it are valid
+    bool structureKept_ = false;             // see structureKept()
     std::vector<std::uint64_t> graph_;       // bit matrix of the pairs sharing a body
     std::size_t words_ = 0;                  // 64-bit words per row of graph_
     std::vector<std::uint64_t> adjacency_, remaining_;  // scratch: graph with fill, pairs left

@@ -98,6 +98,7 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     const std::size_t n = rows.size();
     if (n == 0) return result;
     if (!factor_.analyse(rows, bodies)) {
+        refinable_ = false;
         result.status = LcpStatus::InvalidInput;
         return result;
     }
@@ -107,7 +108,6 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     rhs_.resize(n);
     next_.resize(n);
     use_.resize(n);
-    free_.assign(n, 2);  // neither free nor clamped: the first trial factorises
     linear_.resize(bodies.size());
     angular_.resize(bodies.size());
 
@@ -135,12 +135,21 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
         boundGap_ = gap;  // the reference stays the last solve's
         return result;
     }
+    if (guessComplete && refine(rows, responses, problem, x, states, wTolerance, settings.tolerance)) {
+        result.refined = true;
+        return finish(x, states, result);
+    }
 
+    free_.assign(n, 2);  // neither free nor clamped: the first trial factorises
+    refinable_ = false;
     switched_.assign(n, 0);
     for (int trial = 1; trial <= kMaxTrials; ++trial) {
         result.trials = trial;
         if (!solvePattern(rows, responses, problem, x, states, result)) return result;
-        if (check(rows, responses, problem, x, states, wTolerance, settings.tolerance) == 0) return finish(x, states, result);
+        if (check(rows, responses, problem, x, states, wTolerance, settings.tolerance) == 0) {
+            refinable_ = true;
+            return finish(x, states, result);
+        }
         for (std::size_t i = 0; i < n; ++i) {
             if (next_[i] == states[i]) continue;
             states[i] = next_[i];
@@ -270,13 +279,7 @@ bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::spa
                 use_[i] = 0;
                 continue;
             }
-            if (!clamped(states[i])) continue;
-            Real lo = problem.lo[i], hi = problem.hi[i];
-            if (coupled) {
-                hi = problem.mu[i] * std::abs(x[static_cast<std::size_t>(source(problem, i))]);
-                lo = -hi;
-            }
-            x[i] = states[i] == LcpRowState::AtLower ? lo : hi;
+            if (clamped(states[i])) x[i] = boundValue(problem, x, states, i);
         }
     if (freeSetChanged) {
         ++result.factorisations;
@@ -310,7 +313,7 @@ bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::spa
     beta_.resize(k);
     for (std::size_t i = 0; i < k; ++i) {
         const std::size_t row = static_cast<std::size_t>(slidingRows_[i]);
-        const Real d = (states[row] == LcpRowState::AtLower ? -1 : 1) * problem.mu[row];
+        const Real d = slidingSlope(problem, states, row);
         for (std::size_t j = 0; j < k; ++j)
             small_[i * k + j] = (i == j ? 1 : 0) + d * factor_.scaledDot(path(k + i), reached(k + i), path(j), reached(j));
         beta_[i] = d * x[static_cast<std::size_t>(source(problem, row))];
@@ -329,12 +332,16 @@ bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::spa
     return true;
 }
 
-// Gaussian elimination with partial pivoting of small_ (k×k) against beta_, in place.
+// Gaussian elimination with partial pivoting of small_ (k×k) against beta_, in place. small_
+// keeps the LU factors (the multipliers below the diagonal, rows in pivot order) and
+// smallPivots_ the row each column's pivot came from, for solveSmallAgain.
 bool SparseLcpSolver::solveSmall(std::size_t k) {
+    smallPivots_.resize(k);
     for (std::size_t c = 0; c < k; ++c) {
         std::size_t pivot = c;
         for (std::size_t r = c + 1; r < k; ++r)
             if (std::abs(small_[r * k + c]) > std::abs(small_[pivot * k + c])) pivot = r;
+        smallPivots_[c] = static_cast<int>(pivot);
         if (!(std::abs(small_[pivot * k + c]) > 1e-12)) return false;
         if (pivot != c) {
             for (std::size_t j = 0; j < k; ++j) std::swap(small_[c * k + j], small_[pivot * k + j]);
@@ -342,8 +349,9 @@ bool SparseLcpSolver::solveSmall(std::size_t k) {
         }
         for (std::size_t r = c + 1; r < k; ++r) {
             const Real f = small_[r * k + c] / small_[c * k + c];
+            small_[r * k + c] = f;
             if (f == 0) continue;
-            for (std::size_t j = c; j < k; ++j) small_[r * k + j] -= f * small_[c * k + j];
+            for (std::size_t j = c + 1; j < k; ++j) small_[r * k + j] -= f * small_[c * k + j];
             beta_[r] -= f * beta_[c];
         }
     }
@@ -351,6 +359,93 @@ bool SparseLcpSolver::solveSmall(std::size_t k) {
         for (std::size_t j = c + 1; j < k; ++j) beta_[c] -= small_[c * k + j] * beta_[j];
         beta_[c] /= small_[c * k + c];
     }
+    return true;
+}
+
+// beta_ ← small⁻¹ beta_ with the factors solveSmall left: the row swaps, then L (unit lower),
+// then U.
+void SparseLcpSolver::solveSmallAgain(std::size_t k) {
+    for (std::size_t c = 0; c < k; ++c) std::swap(beta_[c], beta_[static_cast<std::size_t>(smallPivots_[c])]);
+    for (std::size_t c = 0; c < k; ++c)
+        for (std::size_t r = c + 1; r < k; ++r) beta_[r] -= small_[r * k + c] * beta_[c];
+    for (std::size_t c = k; c-- > 0;) {
+        for (std::size_t j = c + 1; j < k; ++j) beta_[c] -= small_[c * k + j] * beta_[j];
+        beta_[c] /= small_[c * k + c];
+    }
+}
+
+// Where a row at a bound sits: its bound, a friction row's box from its normal's impulse in x.
+Real SparseLcpSolver::boundValue(const LcpProblem& problem, std::span<const Real> x, std::span<const LcpRowState> states,
+                                 std::size_t i) const {
+    const int s = source(problem, i);
+    if (s < 0) return states[i] == LcpRowState::AtLower ? problem.lo[i] : problem.hi[i];
+    const Real box = problem.mu[i] * std::abs(x[static_cast<std::size_t>(s)]);
+    return states[i] == LcpRowState::AtLower ? -box : box;
+}
+
+// A sliding friction row's impulse per unit of its (pushing) normal's: ±μ.
+Real SparseLcpSolver::slidingSlope(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const {
+    return (states[i] == LcpRowState::AtLower ? -1 : 1) * problem.mu[i];
+}
+
+// A guess in the pattern of the last answer a trial found (a resting figure's, a step later) is
+// refined with that answer's factorisation instead of a new one. The rows have barely moved, so
+// A_FF is the factorised one to within the poses' change: with r_F the free rows' residual at x
+// (rows at a bound on it, sliding rows at ±μ times their normals), one step
+//     δ_F = A_FF⁻¹ (r_F − A_Fs δ_s),   δ_s = ±μ δ_n(s)
+// (the sliding rows' coupling by the kept LU of the small system of solvePattern, whose equations
+// are the same with δ0 = A_FF⁻¹ r_F for x0) leaves an error of the order of that change times
+// the residual. The refined x must pass the trials' check, and its free rows w = 0 within the
+// tolerance; if it does not, the trials follow.
+bool SparseLcpSolver::refine(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                             const LcpProblem& problem, std::span<Real> x, std::span<const LcpRowState> states,
+                             Real wTolerance, Real tolerance) {
+    const std::size_t n = rows.size();
+    if (!refinable_ || !factor_.structureKept() || free_.size() != n) return false;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (free_[i] != (states[i] == LcpRowState::Free ? 1 : 0)) return false;
+        if (!sliding(problem, states, i)) continue;
+        if (k == slidingRows_.size() || slidingRows_[k] != static_cast<int>(i)) return false;
+        ++k;
+    }
+    if (k != slidingRows_.size()) return false;
+    for (std::size_t pass = 0; pass < 2; ++pass)  // normals before the friction rows they bound
+        for (std::size_t i = 0; i < n; ++i) {
+            if ((source(problem, i) >= 0) != (pass == 1)) continue;
+            if (sliding(problem, states, i))
+                x[i] = slidingSlope(problem, states, i) * x[static_cast<std::size_t>(source(problem, i))];
+            else if (clamped(states[i]))
+                x[i] = boundValue(problem, x, states, i);
+        }
+    evaluate(rows, responses, problem, x);
+    for (std::size_t i = 0; i < n; ++i) rhs_[i] = free_[i] ? -w_[i] : 0;
+    factor_.solve(rhs_);
+    if (k > 0) {
+        for (std::size_t j = 0; j < k; ++j) {
+            const std::size_t row = static_cast<std::size_t>(slidingRows_[j]);
+            beta_[j] = slidingSlope(problem, states, row) * rhs_[static_cast<std::size_t>(source(problem, row))];
+        }
+        solveSmallAgain(k);
+        correction_.assign(n, 0);
+        std::fill(use_.begin(), use_.end(), 0);
+        for (std::size_t j = 0; j < k; ++j) {
+            const std::size_t row = static_cast<std::size_t>(slidingRows_[j]);
+            correction_[row] = beta_[j];
+            use_[row] = 1;
+            x[row] += beta_[j];
+        }
+        zeros_.assign(n, 0);
+        solveFree(rows, responses, zeros_, correction_, correction_);
+        for (std::size_t i = 0; i < n; ++i)
+            if (free_[i]) rhs_[i] += correction_[i];
+    }
+    for (std::size_t i = 0; i < n; ++i)
+        if (free_[i]) x[i] += rhs_[i];
+    // Unlike a trial's, the free rows' equations hold only as far as the refinement got.
+    if (check(rows, responses, problem, x, states, wTolerance, tolerance) != 0) return false;
+    for (std::size_t i = 0; i < n; ++i)
+        if (free_[i] && !(std::abs(w_[i]) <= wTolerance)) return false;
     return true;
 }
 

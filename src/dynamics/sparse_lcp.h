@@ -29,7 +29,8 @@ struct SparseLcpResult {
     LcpStatus status = LcpStatus::Solved;  // NotConverged: no answer, fall back; InvalidInput:
                                            // rows the factorisation cannot take (see analyse)
     int trials = 0;                        // patterns solved (0: the guess's own impulses held,
-                                           // 1: its states held)
+                                           // or were refined; 1: its states held)
+    bool refined = false;                  // the guess refined with the last answer's factorisation
     int couplingSolves = 0;                // trials with sliding friction rows (solved coupled)
     int coreRows = 0;                      // rows of the dense core, when the trials did not settle
     int factorisations = 0;
@@ -53,7 +54,13 @@ private:
                       SparseLcpResult& result);
     void solveFree(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                    std::span<const Real> b, std::span<const Real> x, std::span<Real> out);
+    bool refine(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
+                std::span<Real> x, std::span<const LcpRowState> states, Real wTolerance, Real tolerance);
     bool solveSmall(std::size_t k);
+    void solveSmallAgain(std::size_t k);
+    Real boundValue(const LcpProblem& problem, std::span<const Real> x, std::span<const LcpRowState> states,
+                    std::size_t i) const;
+    Real slidingSlope(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const;
     void evaluate(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
                   std::span<const Real> x);
     Real xTolerance(std::size_t i, Real tolerance) const;
@@ -74,6 +81,11 @@ private:
 
     SparseRowFactor factor_;
     Real boundGap_ = 0;  // of the last solved answer: its rows at a bound, how far off it
+    // factor_, free_, slidingRows_ and the LU of small_ (with smallPivots_) are those of the last
+    // answer, found by a trial: a guess in its pattern can be refined with them (refine()).
+    bool refinable_ = false;
+    std::vector<int> smallPivots_;
+    std::vector<Real> correction_;
     std::vector<Real> lo_, hi_, w_, rhs_, paths_, small_, beta_;
     std::vector<std::uint8_t> free_, use_, reached_, switched_;
     // The core (sparse_core.cpp): rows whose state the trials could not settle, solved as a dense

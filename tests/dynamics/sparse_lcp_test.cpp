@@ -1,7 +1,8 @@
 // The sparse path (sparse_factor.h, sparse_lcp.h) against the dense exact one (RowSystem +
 // LcpExactSolver) on the same rows: the factorisation of any free set against a dense LDLᵀ, and
 // the LCP's impulses on figures with limits, joint friction, contacts with friction, loops and a
-// second path to the world. Also that a held guess costs one trial, and that rows the
+// second path to the world. Also that a held guess costs one trial, a guess one step on is
+// refined without factorising, and that rows the
 // factorisation cannot take are refused rather than solved wrongly.
 
 #include "af/dynamics/world.h"
@@ -299,6 +300,50 @@ TEST(SparseLcp, AnAnswerThatStillHoldsIsKeptWithoutFactorising) {
     EXPECT_EQ(again.status, LcpStatus::Solved);
     EXPECT_GE(again.trials, 1);
     EXPECT_NE(x, answer);
+}
+
+// A guess in the last answer's pattern whose right-hand side has moved a little (a resting
+// figure one step on) is refined with the last factorisation, sliding friction's coupling
+// included: nothing is factorised, and the answer is a fresh solve's.
+TEST(SparseLcp, AGuessInTheLastAnswersPatternIsRefinedWithoutFactorising) {
+    TreeSolver tree;
+    const Scene scene = humanoidWithContacts(tree);
+    Rows in(scene, false);
+    LcpProblem problem = in.system.problem();
+    SparseLcpSolver solver;
+    std::vector<Real> x(in.rows.size(), 0);
+    std::vector<LcpRowState> states(in.rows.size(), LcpRowState::Unknown);
+    ASSERT_EQ(solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings).status, LcpStatus::Solved);
+    std::fill(x.begin(), x.end(), 0);  // solved again from its pattern alone: by one trial
+    const SparseLcpResult first = solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings);
+    ASSERT_EQ(first.status, LcpStatus::Solved);
+    ASSERT_EQ(first.trials, 1);
+    ASSERT_GT(first.couplingSolves, 0) << "some contacts slide";
+    const std::vector<LcpRowState> pattern = states;
+
+    std::vector<Real> moved(problem.b.begin(), problem.b.end());
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<Real> u(-1, 1);
+    for (Real& b : moved) b += 1e-9 * u(rng) * std::max(Real(1), std::abs(b));
+    problem.b = moved;
+    const SparseLcpResult refined = solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings);
+    ASSERT_EQ(refined.status, LcpStatus::Solved);
+    EXPECT_TRUE(refined.refined);
+    EXPECT_EQ(refined.trials, 0);
+    EXPECT_EQ(refined.factorisations, 0);
+    EXPECT_EQ(states, pattern);
+
+    SparseLcpSolver fresh;
+    std::vector<Real> expected(in.rows.size(), 0);
+    std::vector<LcpRowState> expectedStates(in.rows.size(), LcpRowState::Unknown);
+    ASSERT_EQ(fresh.solve(in.rows.all(), in.responses, problem, scene.bodies, expected, expectedStates, kSettings).status,
+              LcpStatus::Solved);
+    Real largest = 0, worst = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        largest = std::max(largest, std::abs(expected[i]));
+        worst = std::max(worst, std::abs(x[i] - expected[i]));
+    }
+    EXPECT_LE(worst, 1e-9 * largest);
 }
 
 // Three rows of one joint that repeat each other and carry no CFM: no pivot for the third.
