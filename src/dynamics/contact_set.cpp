@@ -41,11 +41,15 @@ void ContactSet::gather(const std::vector<BodyContact>& manifolds, std::span<con
         const Vec3& n = c.manifold.normal;
         // By feature id, not as the manifold lists them (deepest first, which swaps between
         // equally deep corners of a resting box): rows in the same order step after step.
+        // (Insertion by hand: std::sort on a four-element array trips GCC's -Warray-bounds.)
         std::array<int, Manifold::kMaxPoints> order{};
-        for (int i = 0; i < c.manifold.count; ++i) order[static_cast<std::size_t>(i)] = i;
-        std::sort(order.begin(), order.begin() + c.manifold.count, [&](int i, int j) {
-            return c.manifold.points[static_cast<std::size_t>(i)].id < c.manifold.points[static_cast<std::size_t>(j)].id;
-        });
+        const auto idOf = [&](int i) { return c.manifold.points[static_cast<std::size_t>(i)].id; };
+        for (int i = 0; i < c.manifold.count; ++i) {
+            int at = i;
+            for (; at > 0 && idOf(order[static_cast<std::size_t>(at - 1)]) > idOf(i); --at)
+                order[static_cast<std::size_t>(at)] = order[static_cast<std::size_t>(at - 1)];
+            order[static_cast<std::size_t>(at)] = i;
+        }
         for (int k = 0; k < c.manifold.count; ++k) {
             const ManifoldPoint& m = c.manifold.points[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
             ContactPoint& p = points_.emplace_back();
