@@ -4,6 +4,7 @@
 // 12×12 inverse mass matrix.
 
 #include "dynamics/contact_set.h"
+#include "dynamics/row_system.h"
 
 #include <gtest/gtest.h>
 
@@ -81,19 +82,6 @@ Real measuredRate(const std::vector<RigidBody>& bodies, const ContactPoint& p, c
         return d.dot(toWorld(bodyOrNull(at, p.bodyA), p.localA) - toWorld(bodyOrNull(at, p.bodyB), p.localB));
     };
     return (gap(later) - gap(earlier)) / (2 * h);
-}
-
-Real rowVelocity(const ConstraintRow& row, const std::vector<RigidBody>& bodies) {
-    Real v = 0;
-    if (row.bodyA != kWorldBody) {
-        const RigidBody& a = bodies[static_cast<std::size_t>(row.bodyA)];
-        v += row.linearA.dot(a.linearVelocity) + row.angularA.dot(a.angularVelocity);
-    }
-    if (row.bodyB != kWorldBody) {
-        const RigidBody& b = bodies[static_cast<std::size_t>(row.bodyB)];
-        v += row.linearB.dot(b.linearVelocity) + row.angularB.dot(b.angularVelocity);
-    }
-    return v;
 }
 
 // Each row's J u is the rate at which the separation of the point's two surface points changes

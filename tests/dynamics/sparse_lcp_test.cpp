@@ -274,70 +274,72 @@ TEST(SparseLcp, AGuessThatHoldsCostsOneTrial) {
     EXPECT_GT(again.result.couplingSolves, 0) << "some contacts slide";
 }
 
+// The humanoid with contacts' velocity problem and one sparse solver kept across solves, as an
+// island keeps its own from step to step.
+struct HumanoidSolves {
+    TreeSolver tree;
+    Scene scene = humanoidWithContacts(tree);
+    Rows in{scene, false};
+    LcpProblem problem = in.system.problem();
+    SparseLcpSolver solver;
+    std::vector<Real> x = std::vector<Real>(in.rows.size(), 0);
+    std::vector<LcpRowState> states = std::vector<LcpRowState>(in.rows.size(), LcpRowState::Unknown);
+
+    SparseLcpResult solve() { return solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings); }
+};
+
 // The answer itself as the next guess (a figure at rest meets its last problem again): it holds
 // as it is, nothing is factorised and the impulses stay. A right-hand side moved by more than
 // the tolerance is solved again.
 TEST(SparseLcp, AnAnswerThatStillHoldsIsKeptWithoutFactorising) {
-    TreeSolver tree;
-    const Scene scene = humanoidWithContacts(tree);
-    Rows in(scene, false);
-    LcpProblem problem = in.system.problem();
-    SparseLcpSolver solver;
-    std::vector<Real> x(in.rows.size(), 0);
-    std::vector<LcpRowState> states(in.rows.size(), LcpRowState::Unknown);
-    ASSERT_EQ(solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings).status, LcpStatus::Solved);
-    const std::vector<Real> answer = x;
-    const SparseLcpResult held = solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings);
+    HumanoidSolves h;
+    ASSERT_EQ(h.solve().status, LcpStatus::Solved);
+    const std::vector<Real> answer = h.x;
+    const SparseLcpResult held = h.solve();
     EXPECT_EQ(held.status, LcpStatus::Solved);
     EXPECT_EQ(held.trials, 0);
     EXPECT_EQ(held.factorisations, 0);
-    EXPECT_EQ(x, answer);
+    EXPECT_EQ(h.x, answer);
 
-    std::vector<Real> moved(problem.b.begin(), problem.b.end());
+    std::vector<Real> moved(h.problem.b.begin(), h.problem.b.end());
     for (Real& b : moved) b += 1e-6;
-    problem.b = moved;
-    const SparseLcpResult again = solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings);
+    h.problem.b = moved;
+    const SparseLcpResult again = h.solve();
     EXPECT_EQ(again.status, LcpStatus::Solved);
     EXPECT_GE(again.trials, 1);
-    EXPECT_NE(x, answer);
+    EXPECT_NE(h.x, answer);
 }
 
 // A guess in the last answer's pattern whose right-hand side has moved a little (a resting
 // figure one step on) is refined with the last factorisation, sliding friction's coupling
 // included: nothing is factorised, and the answer is a fresh solve's.
 TEST(SparseLcp, AGuessInTheLastAnswersPatternIsRefinedWithoutFactorising) {
-    TreeSolver tree;
-    const Scene scene = humanoidWithContacts(tree);
-    Rows in(scene, false);
-    LcpProblem problem = in.system.problem();
-    SparseLcpSolver solver;
-    std::vector<Real> x(in.rows.size(), 0);
-    std::vector<LcpRowState> states(in.rows.size(), LcpRowState::Unknown);
-    ASSERT_EQ(solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings).status, LcpStatus::Solved);
-    std::fill(x.begin(), x.end(), 0);  // solved again from its pattern alone: by one trial
-    const SparseLcpResult first = solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings);
+    HumanoidSolves h;
+    ASSERT_EQ(h.solve().status, LcpStatus::Solved);
+    std::fill(h.x.begin(), h.x.end(), 0);  // solved again from its pattern alone: by one trial
+    const SparseLcpResult first = h.solve();
     ASSERT_EQ(first.status, LcpStatus::Solved);
     ASSERT_EQ(first.trials, 1);
     ASSERT_GT(first.couplingSolves, 0) << "some contacts slide";
-    const std::vector<LcpRowState> pattern = states;
+    const std::vector<LcpRowState> pattern = h.states;
 
-    std::vector<Real> moved(problem.b.begin(), problem.b.end());
+    std::vector<Real> moved(h.problem.b.begin(), h.problem.b.end());
     std::mt19937 rng(7);
     std::uniform_real_distribution<Real> u(-1, 1);
     for (Real& b : moved) b += 1e-9 * u(rng) * std::max(Real(1), std::abs(b));
-    problem.b = moved;
-    const SparseLcpResult refined = solver.solve(in.rows.all(), in.responses, problem, scene.bodies, x, states, kSettings);
+    h.problem.b = moved;
+    const SparseLcpResult refined = h.solve();
     ASSERT_EQ(refined.status, LcpStatus::Solved);
     EXPECT_TRUE(refined.refined);
     EXPECT_EQ(refined.trials, 0);
     EXPECT_EQ(refined.factorisations, 0);
-    EXPECT_EQ(states, pattern);
+    EXPECT_EQ(h.states, pattern);
 
-    SparseLcpSolver fresh;
-    std::vector<Real> expected(in.rows.size(), 0);
-    std::vector<LcpRowState> expectedStates(in.rows.size(), LcpRowState::Unknown);
-    ASSERT_EQ(fresh.solve(in.rows.all(), in.responses, problem, scene.bodies, expected, expectedStates, kSettings).status,
-              LcpStatus::Solved);
+    HumanoidSolves fresh;
+    fresh.problem.b = moved;
+    ASSERT_EQ(fresh.solve().status, LcpStatus::Solved);
+    const std::vector<Real>& x = h.x;
+    const std::vector<Real>& expected = fresh.x;
     Real largest = 0, worst = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
         largest = std::max(largest, std::abs(expected[i]));
