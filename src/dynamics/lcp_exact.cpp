@@ -24,10 +24,9 @@
 // the last pattern. The first pass starts from the caller's guess and has repaired what single
 // pivots could; a guess a step old is usually further off. Plain Dantzig on a convex problem
 // never stalls, and when the boxes stop moving the answer is complementary with the coupled
-// bounds as well. The boxes converge only
-// linearly, so once a pass keeps the pattern it started from, the boxes stop closing in, or the
-// passes run out, the coupled passes take over from that pattern (usually in one pass, no
-// pivots).
+// bounds as well. The boxes converge only linearly, so once a pass keeps the pattern it started
+// from, the boxes stop closing in, or the passes run out, the coupled passes take over from that
+// pattern (usually in one pass, no pivots).
 
 #include "dynamics/lcp_internal.h"
 

@@ -108,10 +108,10 @@ struct LcpExactSettings {
     int maxCouplingPasses = 16;
     /// Compute LcpResult::residual against the original problem (one extra n×n product).
     bool computeResidual = true;
-    /// Coupled problems solved with a warm start may first freeze the friction boxes at the
-    /// guess and iterate them to a fixed point, at most this many plain boxed solves; see
-    /// solve(). 0 (the default): never. Worth it when the guess holds impulses as well as states
-    /// (World sets it: a tumbling figure's coupled drives cost far more than a few plain solves).
+    /// A coupled problem solved with a warm start whose guess does not hold in the first pass
+    /// may freeze the friction boxes at that pass's normals and iterate them to a fixed point, at
+    /// most this many plain boxed solves; see solve(). 0 (the default): never. World sets it: a
+    /// tumbling figure's coupled drives cost far more than a few plain solves.
     int frictionBoxPasses = 0;
 };
 
@@ -153,9 +153,8 @@ public:
 
     /// Solves `problem` into outX (size n). ioStates is empty (cold start, states not returned)
     /// or holds n entries: on input the warm-start guess (Unknown where there is none), on output
-    /// the final state of every row. With a warm start, outX on input is the guess of the
-    /// impulses (0 where there is none): a coupled problem's first friction boxes are mu times
-    /// its normals (frictionBoxPasses).
+    /// the final state of every row. outX is not read: the impulses follow from the states
+    /// (frictionBoxPasses freezes the boxes at the normals of the first pass's answer).
     LcpResult solve(const LcpProblem& problem, std::span<Real> outX,
                     std::span<LcpRowState> ioStates = {});
 
