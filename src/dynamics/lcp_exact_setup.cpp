@@ -28,6 +28,19 @@ enum Group : int { kClampedGuess, kBoundGuess, kToPivot, kCoupledToPivot, kGroup
 
 Real clampReal(Real v, Real lo, Real hi) { return std::min(std::max(v, lo), hi); }
 
+// The caller's state of a row in a slot; Unknown for a row not settled (failed or unprocessed).
+LcpRowState stateOf(Slot slot) {
+    switch (slot) {
+        case Slot::Clamped:
+        case Slot::Held: return LcpRowState::Free;
+        case Slot::AtLower: return LcpRowState::AtLower;
+        case Slot::AtUpper: return LcpRowState::AtUpper;
+        case Slot::Failed:
+        case Slot::Unprocessed: break;
+    }
+    return LcpRowState::Unknown;
+}
+
 }  // namespace
 
 void LcpExactSolver::Impl::reserve(int size) {
@@ -273,16 +286,7 @@ void LcpExactSolver::Impl::saveGuess(std::span<Real> outX, std::span<LcpRowState
     for (int p = 0; p < n; ++p) {
         const int r = perm[p];
         outX[r] = x[p];
-        LcpRowState state = LcpRowState::Unknown;
-        switch (slot[p]) {
-            case Slot::Clamped:
-            case Slot::Held: state = LcpRowState::Free; break;
-            case Slot::AtLower: state = LcpRowState::AtLower; break;
-            case Slot::AtUpper: state = LcpRowState::AtUpper; break;
-            case Slot::Failed:
-            case Slot::Unprocessed: break;
-        }
-        outStates[r] = state;
+        outStates[r] = stateOf(slot[p]);
     }
 }
 
@@ -293,17 +297,10 @@ void LcpExactSolver::Impl::finish(const LcpProblem& problem, std::span<Real> out
     for (int p = 0; p < n; ++p) {
         const int r = perm[p];
         outX[r] = x[p];
-        LcpRowState state = LcpRowState::Free;
-        switch (slot[p]) {
-            case Slot::Clamped:
-            case Slot::Held: state = LcpRowState::Free; break;
-            case Slot::AtLower: state = LcpRowState::AtLower; break;
-            case Slot::AtUpper: state = LcpRowState::AtUpper; break;
-            case Slot::Failed:
-            case Slot::Unprocessed:
-                state = LcpRowState::Failed;
-                failed.push_back(r);
-                break;
+        LcpRowState state = stateOf(slot[p]);
+        if (state == LcpRowState::Unknown) {
+            state = LcpRowState::Failed;
+            failed.push_back(r);
         }
         if (!ioStates.empty()) {
             ioStates[r] = state;
