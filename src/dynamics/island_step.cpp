@@ -269,22 +269,9 @@ bool Island::solvePositionsWithTree(IslandContext& context, Real violation) {
 // The rows left out that the tree's answer would violate (w = C + J M⁻¹Jᵀλ < 0, through the
 // responses in system_) get their bounds back; returns whether there were any.
 bool Island::putBackViolated() {
-    const std::span<const Real> lambda = tree_.impulses();
-    shiftLinear_.assign(bodies_.size(), Vec3::Zero());
-    shiftAngular_.assign(bodies_.size(), Vec3::Zero());
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-        if (lambda[i] == 0) continue;
-        const ConstraintRow& r = rows_[i];
-        const RowResponse& m = system_.response(i);
-        if (r.bodyA != kWorldBody) {
-            shiftLinear_[static_cast<std::size_t>(r.bodyA)] += lambda[i] * m.linearA;
-            shiftAngular_[static_cast<std::size_t>(r.bodyA)] += lambda[i] * m.angularA;
-        }
-        if (r.bodyB != kWorldBody) {
-            shiftLinear_[static_cast<std::size_t>(r.bodyB)] += lambda[i] * m.linearB;
-            shiftAngular_[static_cast<std::size_t>(r.bodyB)] += lambda[i] * m.angularB;
-        }
-    }
+    shiftLinear_.resize(bodies_.size());
+    shiftAngular_.resize(bodies_.size());
+    accumulateResponses(rows_.all(), system_.responses(), tree_.impulses(), shiftLinear_, shiftAngular_);
     const auto violated = [&](const HeldRow& held) {
         ConstraintRow& r = rows_[held.row];
         Real w = r.error;
