@@ -115,15 +115,25 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     bool guessComplete = true;
     for (std::size_t i = 0; i < n; ++i) {
         bScale = std::max(bScale, std::abs(problem.b[i]));
-        guessComplete = guessComplete && states[i] != LcpRowState::Unknown && states[i] != LcpRowState::Failed;
+        const bool unknown = states[i] == LcpRowState::Unknown || states[i] == LcpRowState::Failed;
+        guessComplete = guessComplete && !unknown;
         const bool lower = std::isfinite(problem.lo[i]) || source(problem, i) >= 0;
         const bool upper = std::isfinite(problem.hi[i]) || source(problem, i) >= 0;
         if (!lower && !upper) {
             states[i] = LcpRowState::Free;
-        } else if (states[i] == LcpRowState::Unknown || states[i] == LcpRowState::Failed) {
-            // A new contact or limit starts without pushing; a new friction row sticks.
-            states[i] = lower && upper ? LcpRowState::Free : lower ? LcpRowState::AtLower : LcpRowState::AtUpper;
+        } else if (unknown && source(problem, i) >= 0) {
+            states[i] = LcpRowState::Unknown;  // guessed below, from its normal's guess
+        } else if (unknown) {
+            // A new contact or limit pushes when it is closing (w = −b < 0 before any impulse).
+            const bool closing = lower ? problem.b[i] > 0 : problem.b[i] < 0;
+            states[i] = (lower && upper) || closing ? LcpRowState::Free : lower ? LcpRowState::AtLower : LcpRowState::AtUpper;
         }
+    }
+    // A new friction row sticks when its normal pushes; otherwise its box is empty.
+    for (std::size_t i = 0; i < n; ++i) {
+        if (states[i] != LcpRowState::Unknown) continue;
+        const bool normalPushes = states[static_cast<std::size_t>(source(problem, i))] == LcpRowState::Free;
+        states[i] = normalPushes ? LcpRowState::Free : LcpRowState::AtLower;
     }
     const Real wTolerance = settings.tolerance * bScale;
 

@@ -40,10 +40,10 @@ struct SparseLcpResult {
 class SparseLcpSolver {
 public:
     // Solves the problem's b, bounds, friction coupling and CFM (problem.a is not read) for the
-    // rows, whose responses M⁻¹Jᵀ are given. x and states carry the guess in (Unknown states are
-    // guessed from the bounds) and the answer out; on failure they hold the last trial. The
-    // settings are the pivoting solver's: their tolerance is the answer's, and the dense core is
-    // solved with them.
+    // rows, whose responses M⁻¹Jᵀ are given. x and states carry the guess in (for an Unknown row:
+    // a contact or limit pushes when it is closing, a friction row sticks when its normal
+    // pushes) and the answer out; on failure they hold the last trial. The settings are the
+    // pivoting solver's: their tolerance is the answer's, and the dense core is solved with them.
     SparseLcpResult solve(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                           const LcpProblem& problem, std::span<const RigidBody> bodies, std::span<Real> x,
                           std::span<LcpRowState> states, const LcpExactSettings& settings);
