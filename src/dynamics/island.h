@@ -84,6 +84,7 @@ private:
     void statesFromImpulses(const IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
     bool closeDrift(Real dt, IslandContext& context);
+    std::span<const char> limitsToHold();
     // jointErrorsAtPoses: jointErrors_ are already measured at the bodies' current poses.
     void projectPositions(IslandContext& context, bool jointErrorsAtPoses);
     bool moveWhileImproving(Real& violation, IslandContext& context);
@@ -146,6 +147,7 @@ private:
     RowPgs rowPgs_;
     ShakeCorrection shake_;
     std::vector<RigidBody> beforeShake_;
+    std::vector<char> holdLimit_;  // see limitsToHold
     std::vector<RigidBody> beforeProjection_;
     // Rows solvePositionsWithTree leaves out of its LCP, with their upper bounds.
     struct HeldRow {

@@ -34,8 +34,9 @@ int findRoot(std::vector<int>& parent, int i) {
 }  // namespace
 
 void ShakeCorrection::capture(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
-                              const RowSystem& system) {
+                              const RowSystem& system, std::span<const char> hold) {
     start_.clear();
+    offset_.clear();
     responses_.clear();
     factorised_ = false;
     // The order and the blocks depend only on which bodies the joints join and how many rows
@@ -50,19 +51,25 @@ void ShakeCorrection::capture(const ConstraintRows& rows, const std::vector<Join
             groups_.emplace_back();
             same = false;
         }
+        const int first = static_cast<int>(start_.size());
+        for (int r = 0; r < range.equalityRows + range.limitRows; ++r) {
+            const std::size_t i = static_cast<std::size_t>(range.first + r);
+            const bool limit = r >= range.equalityRows;
+            if (limit && !(i < hold.size() && hold[i])) continue;
+            start_.push_back(rows[i]);
+            if (limit) start_.back().error = std::min(rows[i].error, Real(0));
+            offset_.push_back(r);
+            responses_.push_back(system.response(i));
+        }
+        const int size = static_cast<int>(start_.size()) - first;
         Group& g = groups_[count++];
-        same = same && g.size == range.equalityRows && g.bodyA == row.bodyA && g.bodyB == row.bodyB;
+        same = same && g.first == first && g.size == size && g.bodyA == row.bodyA && g.bodyB == row.bodyB;
         if (!same) {
             g = Group{};
-            g.first = static_cast<int>(start_.size());
-            g.size = range.equalityRows;
+            g.first = first;
+            g.size = size;
             g.bodyA = row.bodyA;
             g.bodyB = row.bodyB;
-        }
-        for (int r = 0; r < range.equalityRows; ++r) {
-            const std::size_t i = static_cast<std::size_t>(range.first + r);
-            start_.push_back(rows[i]);
-            responses_.push_back(system.response(i));
         }
     }
     if (same && count == groups_.size() && structured_) return;
@@ -316,13 +323,28 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
     drift_.resize(n);
     lambda_.resize(n);
     nowRow_.resize(n);
-    std::size_t i = 0;
-    for (const JointRowRange& range : ranges)
-        for (int r = 0; r < range.equalityRows; ++r, ++i) {
-            nowRow_[i] = static_cast<std::size_t>(range.first + r);
-            drift_[i] = rows[nowRow_[i]].error - start_[i].error;
+    std::size_t i = 0, group = 0;
+    bool found = true;
+    for (const JointRowRange& range : ranges) {
+        if (range.equalityRows == 0) continue;
+        if (group == groups_.size()) return {kInfinity, kInfinity};
+        const std::size_t end = i + static_cast<std::size_t>(groups_[group++].size);
+        for (; i < end; ++i) {
+            const int r = offset_[i];
+            // A limit row of the start is the same limit now when it is there and turns the same way
+            // (a pyramid's other face could have taken its place).
+            const bool there = r < range.equalityRows + range.limitRows;
+            nowRow_[i] = static_cast<std::size_t>(range.first + (there ? r : 0));
+            const ConstraintRow& now = rows[nowRow_[i]];
+            if (r >= range.equalityRows && !(there && now.angularA.dot(start_[i].angularA) > 0)) found = false;
+            drift_[i] = now.error - start_[i].error;
             step.drift = std::max(step.drift, std::abs(drift_[i]));
         }
+    }
+    if (!found) {
+        step.move = kInfinity;
+        return step;
+    }
     if (step.drift <= closed) return step;
     // Later steps after a capture reuse the first one's factors (simplified Newton): the bodies
     // have moved since only by a correction the size of the drift, which changes K by as little.
@@ -353,10 +375,16 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
     linear_.resize(bodies.size());
     angular_.resize(bodies.size());
     accumulateResponses(start_, responses_, lambda_, linear_, angular_);
+    limitLambda_.assign(n, 0);
+    for (std::size_t c = 0; c < n; ++c)
+        if (start_[c].lo == 0) limitLambda_[c] = lambda_[c];
+    limitLinear_.resize(bodies.size());
+    limitAngular_.resize(bodies.size());
+    accumulateResponses(start_, responses_, limitLambda_, limitLinear_, limitAngular_);
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         displaceBody(bodies[b], linear_[b], angular_[b]);
-        bodies[b].linearVelocity += linear_[b] / dt;
-        bodies[b].angularVelocity += angular_[b] / dt;
+        bodies[b].linearVelocity += (linear_[b] - limitLinear_[b]) / dt;
+        bodies[b].angularVelocity += (angular_[b] - limitAngular_[b]) / dt;
         step.move = std::max(step.move, linear_[b].norm() + angular_[b].norm() * gyrationRadius(bodies[b]));
     }
     return step;
