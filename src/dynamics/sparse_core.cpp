@@ -88,11 +88,15 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     const std::size_t groups = static_cast<std::size_t>(factor_.groups());
     paths_.resize(m * vars);
     reached_.resize(m * groups);
+    pathStart_.resize(m);
     for (std::size_t u = 0; u < m; ++u) {
         const std::span<Real> path(&paths_[u * vars], vars);
         const std::span<std::uint8_t> reached(&reached_[u * groups], groups);
         factor_.column(core_[u], rows, responses, path, reached);
         factor_.forward(path, reached);
+        std::size_t g = 0;
+        while (g < groups && !reached[g]) ++g;
+        pathStart_[u] = g < groups ? factor_.firstVariable(static_cast<int>(g)) : static_cast<int>(vars);
     }
     inversePivots_.resize(vars);
     factor_.inversePivots(inversePivots_);
@@ -105,13 +109,16 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     // One dot product per entry of the lower half, mirrored (S is symmetric): cheaper here than a
     // general matrix product (the bench drop's first 250 steps: 652M instructions against 667M),
     // and it never needs blocking buffers, which Eigen takes from the heap once they outgrow its
-    // stack limit.
+    // stack limit. Two paths overlap only from where the later of them starts.
     coreA_.resize(m * m);
     for (std::size_t v = 0; v < m; ++v) {
         const std::size_t column = static_cast<std::size_t>(core_[v]);
         for (std::size_t u = v; u < m; ++u) {
+            const Eigen::Index start = std::max(pathStart_[u], pathStart_[v]);
+            const Eigen::Index length = static_cast<Eigen::Index>(vars) - start;
             const Real entry = rowCoupling(rows[static_cast<std::size_t>(core_[u])], rows[column], responses[column]) -
-                               w.col(static_cast<Eigen::Index>(u)).dot(scaled.col(static_cast<Eigen::Index>(v)));
+                               w.col(static_cast<Eigen::Index>(u)).segment(start, length).dot(
+                                   scaled.col(static_cast<Eigen::Index>(v)).segment(start, length));
             coreA_[v * m + u] = entry;
             coreA_[u * m + v] = entry;
         }

@@ -56,6 +56,9 @@ public:
     // groups and the groups they pass into, the path to the root of the elimination tree.
     int variables() const { return varStart_.empty() ? 0 : varStart_.back(); }
     int groups() const { return static_cast<int>(groupKeys_.size()); }
+    // The first variable of group g (groups are numbered in elimination order, so a vector
+    // forwarded from group g is zero before it).
+    int firstVariable(int g) const { return varStart_[static_cast<std::size_t>(g)]; }
     // Row i's variable, or −1 if it is not free.
     int variableOf(int row) const;
     // The column A_F,row of a row (free or not) into y (zeroed first), flagging its groups.
