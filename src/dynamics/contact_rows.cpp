@@ -34,6 +34,7 @@ struct ContactView {
     Real restitution = 0;
     const Real* approachVelocity = nullptr;   // empty: the bodies' current velocities
     const Vec3* frictionDirection = nullptr;  // world
+    const Vec3* tangents = nullptr;           // null, or tangents(normal) already at hand (two)
 };
 
 // Two unit tangents completing n to a right-handed basis.
@@ -111,6 +112,9 @@ Real velocityAlong(const ContactView& c, const Side& a, const Side& b, const Vec
     if (c.frictionDirection && along.norm() > 1e-9) {
         directions[0] = along.normalized();
         count = 1;
+    } else if (c.tangents) {
+        directions[0] = c.tangents[0];
+        directions[1] = c.tangents[1];
     } else {
         tangents(c.normal, directions[0], directions[1]);
     }
@@ -139,9 +143,10 @@ Mat3 inverseInertiaOf(int body, std::span<const RigidBody> bodies) {
     return body == kWorldBody ? Mat3::Zero() : bodies[static_cast<std::size_t>(body)].inverseInertiaWorld();
 }
 
+// The world's is never read (sideOf leaves it out), so any matrix serves and no static needs
+// a guard on every call.
 const Mat3& inverseInertiaOf(int body, std::span<const Mat3> inverseInertiaWorld) {
-    static const Mat3 world = Mat3::Zero();
-    return body == kWorldBody ? world : inverseInertiaWorld[static_cast<std::size_t>(body)];
+    return body == kWorldBody ? inverseInertiaWorld[0] : inverseInertiaWorld[static_cast<std::size_t>(body)];
 }
 
 }  // namespace
@@ -164,6 +169,9 @@ void writeContactRows(std::span<const ContactPoint> points, std::span<const Rigi
                       std::vector<std::uint64_t>& keys) {
     using contact_detail::bodyOrNull;
     using contact_detail::toWorld;
+    // A manifold's points share its normal, and so their tangents: computed once per run of them.
+    Vec3 tangentsOfNormal[2];
+    Vec3 normalOfTangents = Vec3::Zero();  // no unit normal equals it
     for (const ContactPoint& p : points) {
         const RigidBody* a = bodyOrNull(bodies, p.bodyA);
         const Vec3 onA = toWorld(a, p.localA);
@@ -178,6 +186,13 @@ void writeContactRows(std::span<const ContactPoint> points, std::span<const Rigi
         c.friction = p.friction;
         c.restitution = p.restitution;
         c.approachVelocity = &p.approachVelocity;
+        if (p.friction > 0 && !p.frictionDirection) {
+            if (p.normal != normalOfTangents) {
+                tangents(p.normal, tangentsOfNormal[0], tangentsOfNormal[1]);
+                normalOfTangents = p.normal;
+            }
+            c.tangents = tangentsOfNormal;
+        }
         Vec3 frictionDirection;
         if (p.frictionDirection) {
             frictionDirection = a->orientation * *p.frictionDirection;

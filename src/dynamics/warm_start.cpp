@@ -8,11 +8,13 @@ void WarmStartCache::remember(std::span<const std::uint64_t> keys, std::span<con
                               std::span<const Real> impulses) {
     entries_.resize(keys.size());
     for (std::size_t i = 0; i < keys.size(); ++i) entries_[i] = {keys[i], states[i], impulses[i]};
-    sort();
+    indexChecked_ = false;
 }
 
-// The same keys in the same order as at the last sort (a resting figure): the index still holds.
-void WarmStartCache::sort() {
+// The same keys in the same order as when the index was built (a resting figure): it still holds.
+void WarmStartCache::sort() const {
+    if (indexChecked_) return;
+    indexChecked_ = true;
     const bool sameKeys = std::equal(entries_.begin(), entries_.end(), indexedKeys_.begin(), indexedKeys_.end(),
                                      [](const Entry& e, std::uint64_t key) { return e.key == key; });
     if (sameKeys) return;
@@ -30,6 +32,7 @@ int WarmStartCache::recall(std::span<const std::uint64_t> keys, std::span<LcpRow
     for (std::size_t i = 0; i < keys.size(); ++i) {
         std::size_t at = next;
         if (at >= entries_.size() || entries_[at].key != keys[i]) {
+            sort();
             const auto k = std::lower_bound(byKey_.begin(), byKey_.end(), std::make_pair(keys[i], std::size_t(0)));
             at = k != byKey_.end() && k->first == keys[i] ? k->second : entries_.size();
         }

@@ -7,7 +7,9 @@
 //
 // Rows usually come in the same order step after step (a resting figure's), so entries are kept
 // in the order they were remembered and a recall first tries the entry after the last one found;
-// only rows out of that order are looked up by key.
+// only rows out of that order are looked up by key. The index by key is built by the first recall
+// that needs it, so a cache recalled only in order (or never: an island's velocity cache, which
+// the world merges into its own) never builds or checks it.
 
 #include "af/dynamics/lcp.h"
 
@@ -23,12 +25,18 @@ public:
                   std::span<const Real> impulses);
     // Fills the guesses of `keys`; returns how many rows were found.
     int recall(std::span<const std::uint64_t> keys, std::span<LcpRowState> states, std::span<Real> impulses) const;
-    // Keeps the index by key, so that sort() after the same adds as last time has nothing to do.
-    void clear() { entries_.clear(); }
-    // Builds the cache from others with disjoint keys (the islands of a step): clear, add each,
-    // then sort.
-    void add(const WarmStartCache& other) { entries_.insert(entries_.end(), other.entries_.begin(), other.entries_.end()); }
-    void sort();
+    // Keeps the index by key, so that one after the same adds as last time has nothing to rebuild.
+    void clear() {
+        entries_.clear();
+        indexChecked_ = false;
+    }
+    // Builds the cache from others with disjoint keys (the islands of a step): clear, then add each.
+    void add(const WarmStartCache& other) {
+        entries_.insert(entries_.end(), other.entries_.begin(), other.entries_.end());
+        indexChecked_ = false;
+    }
+    // Builds the index by key now (a recall that needs it would otherwise build it).
+    void sort() const;
 
 private:
     struct Entry {
@@ -36,9 +44,11 @@ private:
         LcpRowState state;
         Real impulse;
     };
-    std::vector<Entry> entries_;                               // in the order remembered
-    std::vector<std::pair<std::uint64_t, std::size_t>> byKey_;  // (key, index into entries_), sorted
-    std::vector<std::uint64_t> indexedKeys_;                    // the entries' keys byKey_ was built from
+    std::vector<Entry> entries_;  // in the order remembered
+    // The index, built on demand by const recalls (an island's caches are used by one thread).
+    mutable std::vector<std::pair<std::uint64_t, std::size_t>> byKey_;  // (key, index into entries_), sorted
+    mutable std::vector<std::uint64_t> indexedKeys_;  // the entries' keys byKey_ was built from
+    mutable bool indexChecked_ = false;                // byKey_ is known to index entries_
 };
 
 }  // namespace af

@@ -169,7 +169,6 @@ void World::State::substep(Real dt) {
     });
     warmStart.clear();
     for (std::size_t k = 0; k < islandCount; ++k) warmStart.add(islands[k].velocityWarmStart());
-    warmStart.sort();
     settleNewContacts();
 }
 
