@@ -14,6 +14,15 @@ namespace {
 // ragdoll's first 250 steps: 2 trials 796M instructions, 3 trials 830M, 8 trials 973M (cores up
 // to 96 rows).
 constexpr int kMaxTrials = 2;
+// A first trial that finds at most this many rows wrong goes to the core at once: switching a few
+// rows together mostly upsets their neighbours (a sticking contact that must slide moves the load
+// onto the corners next to it), which the core's pivoting settles at a cost that grows with its
+// size, not the figure's, while a second trial refactorises everything. Many wrong rows (an
+// impact) are better switched together first, keeping the core well below kMaxCore. Bench drop,
+// 600 steps, with a second trial always / up to 10 wrong rows at once to the core / up to 30 /
+// never: 427.5M / 401.3M / 402.6M / 407.6M instructions; grid4's first 200 steps: 9.43G /
+// 8.32G / 7.05G / 7.09G.
+constexpr int kCoreAfterOneTrial = 32;
 // Times the dense core may grow by the rows its answer finds wrong outside it.
 constexpr int kCoreRounds = 4;
 // A guess is kept when its free rows' w are within this fraction of the tolerance. What a kept
@@ -156,7 +165,8 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     for (int trial = 1; trial <= kMaxTrials; ++trial) {
         result.trials = trial;
         if (!solvePattern(rows, responses, problem, x, states, result)) return result;
-        if (check(rows, responses, problem, x, states, wTolerance, settings.tolerance) == 0) {
+        const int wrong = check(rows, responses, problem, x, states, wTolerance, settings.tolerance);
+        if (wrong == 0) {
             refinable_ = true;
             return finish(x, states, result);
         }
@@ -174,6 +184,7 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
             if (!normalPushes && x[static_cast<std::size_t>(s)] == 0) states[i] = LcpRowState::AtLower;
             if (normalPushes && states[i] == LcpRowState::AtLower && lo_[i] == hi_[i]) states[i] = LcpRowState::Free;
         }
+        if (wrong <= kCoreAfterOneTrial) break;
     }
     // The core, grown by the rows its answer finds wrong outside it, until it holds or is too large.
     for (int round = 0; round < kCoreRounds; ++round) {

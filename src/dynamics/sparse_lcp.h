@@ -11,11 +11,11 @@
 // No matrix of all rows is ever formed: A's products go through the bodies (M⁻¹Jᵀ per row).
 // The answer is accepted only when every row is complementary within the tolerance. Before any
 // trial the guess's own impulses are checked (a figure at rest meets its last problem again and
-// keeps them without factorising). When the guesses do not settle within two trials (a tumbling
-// figure whose contacts all change at once) the rows they switched are solved as a dense LCP on
-// their Schur complement by the pivoting solver (sparse_core.cpp), and the rows its answer finds
-// wrong outside it join it; if that core grows too large, the solve says so and the caller falls
-// back to its other solvers.
+// keeps them without factorising). When the first trial finds a few rows wrong, or a second
+// one does not settle either (a tumbling figure whose contacts all change at once), the rows
+// they switched are solved as a dense LCP on their Schur complement by the pivoting solver
+// (sparse_core.cpp), and the rows its answer finds wrong outside it join it; if that core grows
+// too large, the solve says so and the caller falls back to its other solvers.
 
 #include "af/dynamics/lcp.h"
 #include "sparse_factor.h"
