@@ -62,7 +62,7 @@ struct WorldSettings {
     Real timeStep = Real(1) / 60;      // s
     int substeps = 1;
     SolverKind solver = SolverKind::Exact;
-    LcpExactSettings exact{.frictionBoxPasses = 8};
+    LcpExactSettings exact{.frictionBoxPasses = 32};
     LcpPgsSettings pgs;
     // An island whose pivoting solve would have more rows than this is solved by PGS on its rows
     // (velocities and positions), whatever `solver` says: a pivot costs O(rows²) and the dense
