@@ -8,19 +8,6 @@
 namespace af::test {
 namespace {
 
-// Body A hangs 10 below the world anchor at the origin.
-const RigidPose kHanging{Vec3(0, 0, -10), Mat3::Identity()};
-
-Joint hangingBall(LimitType limit, Real3 angles) {
-    FigureConstraint c = constraintOf(ConstraintType::BallAndSocket, kWorld);
-    c.anchor = Vec3::Zero();
-    c.limit = limit;
-    c.limitAxis = Vec3(0, 0, -1);
-    c.shafts[0] = Vec3(0, 0, -1);
-    c.limitAngles = angles;
-    return makeJoints(twoBodyFigure(kHanging, {}, c)).at(0);
-}
-
 std::vector<RigidBody> hangingTurned(const Vec3& axis, Real degrees) {
     std::vector<RigidBody> bodies = {bodyAt(kHanging), bodyAt({})};
     turnBodyAbout(bodies, 0, Quat(Eigen::AngleAxis<Real>(rad(degrees), axis.normalized())), Vec3::Zero());

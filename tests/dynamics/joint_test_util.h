@@ -151,6 +151,20 @@ inline void turnBodyAbout(std::vector<RigidBody>& bodies, int index, const Quat&
     b.orientation = (turn * b.orientation).normalized();
 }
 
+// Body A hangs 10 below the world anchor at the origin.
+inline const RigidPose kHanging{Vec3(0, 0, -10), Mat3::Identity()};
+
+// A ball joint holding A to the world at the origin, its limit about −Z (A's shaft, hanging).
+inline Joint hangingBall(LimitType limit, Real3 angles) {
+    FigureConstraint c = constraintOf(ConstraintType::BallAndSocket, kWorld);
+    c.anchor = Vec3::Zero();
+    c.limit = limit;
+    c.limitAxis = Vec3(0, 0, -1);
+    c.shafts[0] = Vec3(0, 0, -1);
+    c.limitAngles = angles;
+    return makeJoints(twoBodyFigure(kHanging, {}, c)).at(0);
+}
+
 inline JointRowSettings allLimitRows() {
     JointRowSettings s;
     s.limitMargin = kInfinity;

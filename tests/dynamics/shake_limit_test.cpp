@@ -20,14 +20,7 @@ struct Pendulum {
 // Body A hangs 10 below the world anchor, tilted to its 30° cone, turning at 4 rad/s about the
 // cone's axis (the shaft sweeps the cone's edge: Cdot = 0) and at 1 rad/s about the shaft.
 Pendulum pendulumOnItsCone() {
-    const RigidPose hanging{Vec3(0, 0, -10), Mat3::Identity()};
-    FigureConstraint c = constraintOf(ConstraintType::BallAndSocket, kWorldBody);
-    c.anchor = Vec3::Zero();
-    c.limit = LimitType::Cone;
-    c.limitAxis = Vec3(0, 0, -1);
-    c.shafts[0] = Vec3(0, 0, -1);
-    c.limitAngles = {60, 0, 0};
-    Pendulum p{makeJoints(twoBodyFigure(hanging, {}, c)).at(0), {bodyAt(hanging), bodyAt({})}};
+    Pendulum p{hangingBall(LimitType::Cone, {60, 0, 0}), {bodyAt(kHanging), bodyAt({})}};
     p.bodies.resize(1);
     turnBodyAbout(p.bodies, 0, Quat(Eigen::AngleAxis<Real>(rad(30), Vec3::UnitX())), Vec3::Zero());
     RigidBody& a = p.bodies[0];
