@@ -84,6 +84,9 @@ private:
     void statesFromImpulses(const IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
     bool closeDrift(Real dt, IslandContext& context);
+    // The joints' rows alone at the bodies' poses, without keys: what SHAKE reads. rows_ is whole
+    // again after the next writeRows.
+    void writeJointRowsOnly(const IslandContext& context);
     std::span<const char> limitsToHold();
     // jointErrorsAtPoses: jointErrors_ are already measured at the bodies' current poses.
     void projectPositions(IslandContext& context, bool jointErrorsAtPoses);

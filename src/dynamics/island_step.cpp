@@ -312,9 +312,9 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
     if (ShakeCorrection::drift(rows_, ranges_, jointErrors_, errorRanges_) <= kShakeTolerance) return false;
     shake_.capture(rows_, ranges_, system_, limitsToHold());
     beforeShake_.assign(bodies_.begin(), bodies_.end());
-    writeRows(context);
+    writeJointRowsOnly(context);
     const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
-    writeRows(context);
+    writeJointRowsOnly(context);
     const ShakeCorrection::Step second = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
     const bool wellConditioned = first.move <= kShakeTrust * first.drift + kShakeTolerance;
     const bool converging = second.drift <= 0.1 * first.drift + kShakeTolerance;
@@ -323,6 +323,17 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
         ++context.report.shakeRefusals;
     }
     return true;
+}
+
+// A settling figure's contacts cost as much to write as its joints, and SHAKE moves along the
+// joints alone.
+void Island::writeJointRowsOnly(const IslandContext& context) {
+    rows_.clear();
+    ranges_.clear();
+    rowKeys_.clear();
+    rowInertia_ = system_.inverseInertiasWorld(bodies_);
+    for (const Joint& joint : joints_)
+        ranges_.push_back(writeJointRows(joint, bodies_, rowInertia_, context.settings.rows, rows_));
 }
 
 // Flags for ShakeCorrection::capture: the limit rows that push in the velocity solve (λ > 0), if
