@@ -7,6 +7,7 @@
 #include "tree_internal.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace af {
 
@@ -67,7 +68,10 @@ struct TreeSolver::Impl {
 
     void classify(const ConstraintRows& rows, std::span<const JointRowRange> ranges,
                   std::span<const std::uint64_t> rowKeys);
-    TreeSolveResult solve(const ConstraintRows& rows, WarmStart& start, bool position);
+    // guessStates and guessImpulses (one per row, or empty) start the auxiliary LCP instead of
+    // `start`, which is updated either way.
+    TreeSolveResult solve(const ConstraintRows& rows, WarmStart& start, bool position,
+                          std::span<const LcpRowState> guessStates = {}, std::span<const Real> guessImpulses = {});
     bool setBounds(const ConstraintRows& rows, bool position);
     void warmStates(const ConstraintRows& rows, const WarmStart& start);
     void remember(const ConstraintRows& rows, WarmStart& start) const;
@@ -167,6 +171,16 @@ TreeSolveResult TreeSolver::solveVelocity(const ConstraintRows& rows, std::span<
     return s.solve(rows, s.velocityStart, false);
 }
 
+TreeSolveResult TreeSolver::solveVelocity(const ConstraintRows& rows, std::span<const RigidBody> bodies,
+                                          std::span<const LcpRowState> guessStates, std::span<const Real> guessImpulses) {
+    if (guessStates.size() != rows.size() || guessImpulses.size() != rows.size())
+        throw std::invalid_argument("TreeSolver::solveVelocity: one guess per row");
+    Impl& s = *impl_;
+    s.b.resize(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) s.b[i] = rows[i].target - rowVelocity(rows[i], bodies);
+    return s.solve(rows, s.velocityStart, false, guessStates, guessImpulses);
+}
+
 TreeSolveResult TreeSolver::solvePosition(const ConstraintRows& rows) {
     Impl& s = *impl_;
     s.b.resize(rows.size());
@@ -231,7 +245,8 @@ void TreeSolver::Impl::solvePrimary() {
     tree.backward(z, solution);
 }
 
-TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& start, bool position) {
+TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& start, bool position,
+                                        std::span<const LcpRowState> guessStates, std::span<const Real> guessImpulses) {
     TreeSolveResult result;
     lambda.assign(rows.size(), 0);
     bodyImpulse.assign(forest.nodeOfBody.size(), Vec6::Zero());
@@ -260,7 +275,15 @@ TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& s
     x.assign(n, 0);
     states.resize(n);
     if (n > 0) {
-        warmStates(rows, start);
+        if (guessStates.empty()) {
+            warmStates(rows, start);
+        } else {
+            for (std::size_t k = 0; k < n; ++k) {
+                const std::size_t r = static_cast<std::size_t>(auxRows[k]);
+                states[k] = guessStates[r];
+                x[k] = guessImpulses[r];
+            }
+        }
         LcpProblem problem;
         problem.size = static_cast<int>(n);
         problem.a = aux.schur();

@@ -242,5 +242,43 @@ TEST(TreeSolverWarmStart, TheNextStepNeedsFewPivotsAndTheSameProblemNone) {
     EXPECT_GT(cold, 10 * warm);
 }
 
+// A caller that solves most steps by another path (World's sparse path) hands the tree solver its
+// guess: started from the dense answer's states it pivots not at all, however old its own last
+// solve is, and its answer is the dense one.
+TEST(TreeSolverWarmStart, AGuessFromTheCallerReplacesItsOwnStaleStates) {
+    Scene scene(test::hungHumanoid());
+    spin(scene, 3, 6);
+    TreeSolver solver;
+    solver.setStructure(scene.bodies, scene.joints);
+    solver.factor(scene.rows, scene.ranges, scene.bodies);
+    solver.solveVelocity(scene.rows, scene.bodies);  // the states of the first step: stale below
+    TreeSolver stepper;
+    stepper.setStructure(scene.bodies, scene.joints);
+    for (int i = 0; i < 40; ++i) step(scene, stepper);
+    scene.write();
+    Dense dense;
+    solveDense(scene, false, dense);
+    ASSERT_EQ(dense.result.status, LcpStatus::Solved);
+    ASSERT_GE(std::count(dense.states.begin(), dense.states.end(), LcpRowState::AtLower) +
+                  std::count(dense.states.begin(), dense.states.end(), LcpRowState::AtUpper),
+              5) << "rows at a bound, which a cold or stale start has to pivot to";
+
+    solver.factor(scene.rows, scene.ranges, scene.bodies);
+    const TreeSolveResult guessed = solver.solveVelocity(scene.rows, scene.bodies, dense.states, dense.lambda);
+    EXPECT_EQ(guessed.status, LcpStatus::Solved);
+    EXPECT_EQ(guessed.pivots, 0);
+    const Real scale = std::max(Real(1), largest(dense.lambda));
+    for (std::size_t i = 0; i < dense.lambda.size(); ++i)
+        ASSERT_NEAR(solver.impulses()[i], dense.lambda[i], 1e-9 * scale) << "row " << i;
+
+    TreeSolver stale;
+    stale.setStructure(scene.bodies, scene.joints);
+    stale.factor(scene.rows, scene.ranges, scene.bodies);
+    EXPECT_GT(stale.solveVelocity(scene.rows, scene.bodies).pivots, 0) << "without the guess";
+
+    const std::vector<LcpRowState> tooFew(dense.states.begin(), dense.states.end() - 1);
+    EXPECT_THROW(solver.solveVelocity(scene.rows, scene.bodies, tooFew, dense.lambda), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace af

@@ -90,6 +90,12 @@ public:
     /// matched by identity (joint k's limit row q, its friction row q, the q-th row after the
     /// joints' rows) and bodies; rows without a match start unknown.
     TreeSolveResult solveVelocity(const ConstraintRows& rows, std::span<const RigidBody> bodies);
+    /// The same, the auxiliary LCP started from a guess per row (in the rows' order; Unknown
+    /// where there is none) instead of the last solve's states: a caller that solves most steps
+    /// by another path has a fresher guess than this solver's last solve, which may be many
+    /// steps old.
+    TreeSolveResult solveVelocity(const ConstraintRows& rows, std::span<const RigidBody> bodies,
+                                  std::span<const LcpRowState> guessStates, std::span<const Real> guessImpulses);
     /// The position problem: b_i = −error_i; friction rows (coupled rows and joint friction rows)
     /// are held at 0.
     TreeSolveResult solvePosition(const ConstraintRows& rows);
