@@ -70,9 +70,12 @@ public:
     void forward(std::span<Real> y, std::span<std::uint8_t> active) const;
     // D⁻¹ per variable.
     void inversePivots(std::span<Real> out) const;
-    // uᵀ D⁻¹ v over the groups flagged in both.
-    Real scaledDot(std::span<const Real> u, std::span<const std::uint8_t> uActive, std::span<const Real> v,
-                   std::span<const std::uint8_t> vActive) const;
+    // The flagged groups that hold variables, ascending, appended to out: where a forwarded
+    // vector may be non-zero, as a list (a path to the root is a few groups of many).
+    void support(std::span<const std::uint8_t> active, std::vector<int>& out) const;
+    // uᵀ D⁻¹ v over the groups in both supports (lists from support()).
+    Real scaledDot(std::span<const Real> u, std::span<const int> uGroups, std::span<const Real> v,
+                   std::span<const int> vGroups) const;
 
 private:
     void connect();
@@ -97,12 +100,15 @@ private:
     std::vector<std::uint64_t> graph_;       // bit matrix of the pairs sharing a body
     std::size_t words_ = 0;                  // 64-bit words per row of graph_
     std::vector<std::uint64_t> adjacency_, remaining_;  // scratch: graph with fill, pairs left
+    std::vector<std::uint64_t> recount_;                // scratch: pairs whose counts order() redoes
+    std::vector<std::size_t> missingOf_, degreeOf_;     // order(): each pair's missing links, neighbours
 
     // Values (factor): per group, its free rows; per group a column panel holding its diagonal
     // block (L below the unit diagonal, D on it) above the blocks of its front groups.
     std::vector<int> size_, local_, varStart_;
     std::vector<int> panelStart_, panelHeight_, blockOffset_;
     std::vector<Real> values_, diagonal_;
+    std::vector<Real> pivots_;  // D per variable, contiguous (scaledDot)
     std::vector<Real> scaled_, update_;  // scratch of eliminate()
     struct Packed {                      // a free row on one body (assemble)
         Real jacobian[6], response[6];

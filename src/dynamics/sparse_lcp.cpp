@@ -322,13 +322,22 @@ bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::spa
     reached_.resize(2 * k * groups);
     auto path = [&](std::size_t p) { return std::span<Real>(&paths_[p * vars], vars); };
     auto reached = [&](std::size_t p) { return std::span<std::uint8_t>(&reached_[p * groups], groups); };
-    for (std::size_t j = 0; j < k; ++j) {
-        const int row = slidingRows_[j];
-        factor_.column(row, rows, responses, path(j), reached(j));
+    supports_.clear();
+    supportStart_.assign(1, 0);
+    for (std::size_t j = 0; j < 2 * k; ++j) {
+        const std::size_t row = static_cast<std::size_t>(slidingRows_[j % k]);
+        if (j < k) {
+            factor_.column(static_cast<int>(row), rows, responses, path(j), reached(j));
+        } else {
+            factor_.unit(source(problem, row), path(j), reached(j));
+        }
         factor_.forward(path(j), reached(j));
-        factor_.unit(source(problem, static_cast<std::size_t>(row)), path(k + j), reached(k + j));
-        factor_.forward(path(k + j), reached(k + j));
+        factor_.support(reached(j), supports_);
+        supportStart_.push_back(static_cast<int>(supports_.size()));
     }
+    auto support = [&](std::size_t p) {
+        return std::span<const int>(supports_.data() + supportStart_[p], static_cast<std::size_t>(supportStart_[p + 1] - supportStart_[p]));
+    };
     // (I − D G) β = D x0_n with D = diag(σ μ).
     small_.assign(k * k, 0);
     beta_.resize(k);
@@ -336,7 +345,7 @@ bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::spa
         const std::size_t row = static_cast<std::size_t>(slidingRows_[i]);
         const Real d = slidingSlope(problem, states, row);
         for (std::size_t j = 0; j < k; ++j)
-            small_[i * k + j] = (i == j ? 1 : 0) + d * factor_.scaledDot(path(k + i), reached(k + i), path(j), reached(j));
+            small_[i * k + j] = (i == j ? 1 : 0) + d * factor_.scaledDot(path(k + i), support(k + i), path(j), support(j));
         beta_[i] = d * x[static_cast<std::size_t>(source(problem, row))];
     }
     if (!solveSmall(k)) {

@@ -1,5 +1,6 @@
 // The sparse path (sparse_factor.h, sparse_lcp.h) against the dense exact one (RowSystem +
-// LcpExactSolver) on the same rows: the factorisation of any free set against a dense LDLᵀ, and
+// LcpExactSolver) on the same rows: the factorisation of any free set against a dense LDLᵀ (and
+// the entries of its inverse that friction coupling takes from it), and
 // the LCP's impulses on figures with limits, joint friction, contacts with friction, loops and a
 // second path to the world. Also that a held guess costs one trial, a guess one step on is
 // refined without factorising, and that rows the
@@ -96,6 +97,72 @@ TEST(SparseRowFactor, SolvesAnyFreeSetAsADenseFactorisationDoes) {
     TreeSolver chainTree, humanoidTree;
     expectFactorSolvesLikeDense(freeChainOnTheGround(chainTree), 2, "free chain on the ground");
     expectFactorSolvesLikeDense(humanoidWithContacts(humanoidTree), 3, "humanoid with contacts");
+}
+
+// The sliding friction rows' coupling (sparse_lcp.cpp) takes entries of A_FF⁻¹ as products of
+// forwarded vectors over the groups both reach: the column A_F,j of a row outside F and a free
+// row's unit vector e_i give (A_FF⁻¹ A_F,j)_i, two such columns A_j,F A_FF⁻¹ A_F,k; against the
+// dense solve.
+TEST(SparseRowFactor, ScaledDotsOfForwardedVectorsAreEntriesOfTheInverse) {
+    TreeSolver tree;
+    const Scene scene = humanoidWithContacts(tree);
+    Rows in(scene, false);
+    const std::size_t n = in.rows.size();
+    const LcpProblem p = in.system.problem();
+    SparseRowFactor factor;
+    ASSERT_TRUE(factor.analyse(in.rows.all(), scene.bodies));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<Real> u(0, 1);
+    std::vector<std::uint8_t> free(n);
+    std::vector<int> index, outside;
+    for (std::size_t i = 0; i < n; ++i) {
+        free[i] = u(rng) < 0.7 ? 1 : 0;
+        (free[i] ? index : outside).push_back(static_cast<int>(i));
+    }
+    ASSERT_FALSE(outside.empty());
+    ASSERT_TRUE(factor.factor(in.rows.all(), in.responses, p.cfm, free));
+    const Eigen::Index m = static_cast<Eigen::Index>(index.size());
+    Eigen::MatrixXd a(m, m), columns(m, static_cast<Eigen::Index>(n));
+    for (Eigen::Index i = 0; i < m; ++i) {
+        const std::size_t ri = static_cast<std::size_t>(index[static_cast<std::size_t>(i)]);
+        for (Eigen::Index j = 0; j < m; ++j) a(i, j) = p.a[ri * n + static_cast<std::size_t>(index[static_cast<std::size_t>(j)])];
+        a(i, i) += p.cfm[ri];
+        for (std::size_t j = 0; j < n; ++j) columns(i, static_cast<Eigen::Index>(j)) = p.a[ri * n + j];
+    }
+    const Eigen::MatrixXd solved = a.ldlt().solve(columns);  // A_FF⁻¹ A_F,j for every row j
+    const std::size_t vars = static_cast<std::size_t>(factor.variables()), groups = static_cast<std::size_t>(factor.groups());
+    std::vector<Real> y1(vars), y2(vars);
+    std::vector<std::uint8_t> r1(groups), r2(groups);
+    std::vector<int> s1, s2;
+    Real worst = 0, scale = 0;
+    int checked = 0;
+    for (int pair = 0; pair < 60; ++pair) {
+        auto pick = [&] { return static_cast<std::size_t>(outside[static_cast<std::size_t>(u(rng) * static_cast<Real>(outside.size()))]); };
+        const std::size_t j = pick(), k = pick();
+        const Eigen::Index i = static_cast<Eigen::Index>(u(rng) * static_cast<Real>(m));
+        factor.column(static_cast<int>(j), in.rows.all(), in.responses, y1, r1);
+        factor.forward(y1, r1);
+        s1.clear();
+        factor.support(r1, s1);
+        const bool unit = pair % 2 == 0;
+        if (unit) {
+            factor.unit(index[static_cast<std::size_t>(i)], y2, r2);
+        } else {
+            factor.column(static_cast<int>(k), in.rows.all(), in.responses, y2, r2);
+        }
+        factor.forward(y2, r2);
+        s2.clear();
+        factor.support(r2, s2);
+        const Real sparse = factor.scaledDot(y2, s2, y1, s1);
+        const Real dense = unit ? solved(i, static_cast<Eigen::Index>(j))
+                                : columns.col(static_cast<Eigen::Index>(k)).dot(solved.col(static_cast<Eigen::Index>(j)));
+        worst = std::max(worst, std::abs(sparse - dense));
+        scale = std::max(scale, std::abs(dense));
+        ++checked;
+    }
+    EXPECT_EQ(checked, 60);
+    EXPECT_GT(scale, 0);
+    EXPECT_LE(worst, 1e-9 * scale);
 }
 
 // Contacts that touch without pushing (all their rows clamped) couple nothing: a chain whose
