@@ -426,7 +426,9 @@ Real SparseLcpSolver::slidingSlope(const LcpProblem& problem, std::span<const Lc
 // (the sliding rows' coupling by the kept LU of the small system of solvePattern, whose equations
 // are the same with δ0 = A_FF⁻¹ r_F for x0) leaves an error of the order of that change times
 // the residual. The refined x must pass the trials' check, and its free rows w = 0 within the
-// tolerance; if it does not, the trials follow.
+// tolerance; if it does not, the trials follow. It follows guessHolds on the same x, whose w_ it
+// updates for the rows it puts back on their bounds (a resting figure's one or two sliding rows,
+// by rounding) instead of evaluating every row again.
 bool SparseLcpSolver::refine(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                              const LcpProblem& problem, std::span<Real> x, std::span<const LcpRowState> states,
                              Real wTolerance, Real tolerance) {
@@ -440,15 +442,35 @@ bool SparseLcpSolver::refine(std::span<const ConstraintRow> rows, std::span<cons
         ++k;
     }
     if (k != slidingRows_.size()) return false;
+    correction_.assign(n, 0);
+    bool moved = false;
     for (std::size_t pass = 0; pass < 2; ++pass)  // normals before the friction rows they bound
         for (std::size_t i = 0; i < n; ++i) {
             if ((source(problem, i) >= 0) != (pass == 1)) continue;
+            const Real before = x[i];
             if (sliding(problem, states, i))
                 x[i] = slidingSlope(problem, states, i) * x[static_cast<std::size_t>(source(problem, i))];
             else if (clamped(states[i]))
                 x[i] = boundValue(problem, x, states, i);
+            correction_[i] = x[i] - before;
+            moved = moved || correction_[i] != 0;
         }
-    evaluate(rows, responses, problem, x);
+    if (moved) {
+        // w_ += (A + CFM) Δx, on the rows that share a body with a moved one.
+        velocityChange(rows, responses, correction_, {});
+        touched_.assign(linear_.size(), 0);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (correction_[i] == 0) continue;
+            if (rows[i].bodyA != kWorldBody) touched_[static_cast<std::size_t>(rows[i].bodyA)] = 1;
+            if (rows[i].bodyB != kWorldBody) touched_[static_cast<std::size_t>(rows[i].bodyB)] = 1;
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            const ConstraintRow& r = rows[i];
+            const bool near = (r.bodyA != kWorldBody && touched_[static_cast<std::size_t>(r.bodyA)]) ||
+                              (r.bodyB != kWorldBody && touched_[static_cast<std::size_t>(r.bodyB)]);
+            if (near) w_[i] += along(r) + (problem.cfm.empty() ? 0 : problem.cfm[i]) * correction_[i];
+        }
+    }
     for (std::size_t i = 0; i < n; ++i) rhs_[i] = free_[i] ? -w_[i] : 0;
     factor_.solve(rhs_);
     if (k > 0) {
@@ -457,7 +479,7 @@ bool SparseLcpSolver::refine(std::span<const ConstraintRow> rows, std::span<cons
             beta_[j] = slidingSlope(problem, states, row) * rhs_[static_cast<std::size_t>(source(problem, row))];
         }
         solveSmallAgain(k);
-        correction_.assign(n, 0);
+        std::fill(correction_.begin(), correction_.end(), 0);
         std::fill(use_.begin(), use_.end(), 0);
         for (std::size_t j = 0; j < k; ++j) {
             const std::size_t row = static_cast<std::size_t>(slidingRows_[j]);

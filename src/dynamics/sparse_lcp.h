@@ -87,7 +87,7 @@ private:
     std::vector<int> smallPivots_;
     std::vector<Real> correction_;
     std::vector<Real> lo_, hi_, w_, rhs_, paths_, small_, beta_;
-    std::vector<std::uint8_t> free_, use_, reached_, switched_;
+    std::vector<std::uint8_t> free_, use_, reached_, switched_, touched_;
     std::vector<int> pathStart_;  // solveCore: the first variable each path reaches
     std::vector<int> supports_, supportStart_;  // solvePattern: the groups each path reaches
     // The core (sparse_core.cpp): rows whose state the trials could not settle, solved as a dense

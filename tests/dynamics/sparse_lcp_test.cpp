@@ -431,6 +431,36 @@ TEST(SparseLcp, AGuessInTheLastAnswersPatternIsRefinedWithoutFactorising) {
 }
 
 // Three rows of one joint that repeat each other and carry no CFM: no pivot for the third.
+// A guess in the last answer's pattern whose rows at a bound have drifted off them (sliding rows
+// off ±μ times their normals) is put back on them and refined: its free rows then follow that
+// move, and the answer is the last one.
+TEST(SparseLcp, AGuessOffItsBoundsIsPutBackOnThemAndRefined) {
+    HumanoidSolves h;
+    ASSERT_EQ(h.solve().status, LcpStatus::Solved);
+    std::fill(h.x.begin(), h.x.end(), 0);  // solved again from its pattern alone: by one trial
+    ASSERT_EQ(h.solve().status, LcpStatus::Solved);
+    const std::vector<Real> answer = h.x;
+    const std::vector<LcpRowState> pattern = h.states;
+    int off = 0;
+    for (std::size_t i = 0; i < h.x.size(); ++i) {
+        if (h.states[i] == LcpRowState::Free) continue;
+        h.x[i] += 1e-6 * (1 + std::abs(h.x[i]));
+        ++off;
+    }
+    ASSERT_GT(off, 10);
+    const SparseLcpResult refined = h.solve();
+    ASSERT_EQ(refined.status, LcpStatus::Solved);
+    EXPECT_TRUE(refined.refined);
+    EXPECT_EQ(refined.factorisations, 0);
+    EXPECT_EQ(h.states, pattern);
+    Real largest = 0, worst = 0;
+    for (std::size_t i = 0; i < answer.size(); ++i) {
+        largest = std::max(largest, std::abs(answer[i]));
+        worst = std::max(worst, std::abs(h.x[i] - answer[i]));
+    }
+    EXPECT_LE(worst, 1e-9 * largest);
+}
+
 TEST(SparseLcp, DependentRowsWithoutCfmAreRefused) {
     const std::vector<RigidBody> bodies = {RigidBody::dynamic(2, Mat3::Identity(), Vec3(0, 0, -5), Quat::Identity())};
     const ConstraintRows rows = dependentRows();
