@@ -47,6 +47,7 @@ int CollisionWorld::addBody(const Polytope& shape, const CollisionFilter& filter
         body.radius = std::max(body.radius, (v - body.centre).norm());
     }
     bodies_.push_back(std::move(body));
+    ++version_;
     return static_cast<int>(bodies_.size()) - 1;
 }
 
@@ -57,6 +58,7 @@ void CollisionWorld::excludePair(int a, int b) {
     };
     exclude(a, b);
     exclude(b, a);
+    ++version_;
 }
 
 int CollisionWorld::addPlane(const Plane& plane, ContentsMask contents) {
@@ -65,6 +67,7 @@ int CollisionWorld::addPlane(const Plane& plane, ContentsMask contents) {
     s.isPlane = true;
     s.contents = contents;
     statics_.push_back(std::move(s));
+    ++version_;
     return static_cast<int>(statics_.size()) - 1;
 }
 
@@ -74,10 +77,14 @@ int CollisionWorld::addStatic(const Polytope& worldShape, ContentsMask contents)
     s.bounds = boundsOf(worldShape, RigidPose{}, 0);
     s.contents = contents;
     statics_.push_back(std::move(s));
+    ++version_;
     return static_cast<int>(statics_.size()) - 1;
 }
 
-void CollisionWorld::removeStatic(int staticShape) { statics_[static_cast<std::size_t>(staticShape)].removed = true; }
+void CollisionWorld::removeStatic(int staticShape) {
+    statics_[static_cast<std::size_t>(staticShape)].removed = true;
+    ++version_;
+}
 
 bool CollisionWorld::mayCollide(int a, int b) const {
     if (a == b) return false;

@@ -27,45 +27,59 @@ using contact_detail::toWorld;
 void ContactSet::gather(const std::vector<BodyContact>& manifolds, std::span<const RigidBody> bodies,
                         std::span<const BodyMaterial> materials) {
     points_.clear();
-    for (const BodyContact& c : manifolds) {
-        const int bodyB = c.bodyB == kStaticWorld ? kWorldBody : c.bodyB;
-        const BodyMaterial& material = materials[static_cast<std::size_t>(c.bodyA)];
-        // Doom: μ is body A's, lowered to B's when B's is lower.
-        Real friction = material.friction;
-        if (bodyB != kWorldBody) friction = std::min(friction, materials[static_cast<std::size_t>(bodyB)].friction);
-        const std::uint64_t pairKey = mix(mix(static_cast<std::uint64_t>(c.bodyA)) ^
-                                          static_cast<std::uint64_t>(c.bodyB == kStaticWorld ? (1ull << 32) + static_cast<std::uint64_t>(c.staticShape)
-                                                                                             : static_cast<std::uint64_t>(c.bodyB)));
-        const RigidBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
-        const RigidBody* b = bodyOrNull(bodies, bodyB);
-        const Vec3& n = c.manifold.normal;
-        // By feature id, not as the manifold lists them (deepest first, which swaps between
-        // equally deep corners of a resting box): rows in the same order step after step.
-        // (Insertion by hand: std::sort on a four-element array trips GCC's -Warray-bounds.)
-        std::array<int, Manifold::kMaxPoints> order{};
-        const auto idOf = [&](int i) { return c.manifold.points[static_cast<std::size_t>(i)].id; };
-        for (int i = 0; i < c.manifold.count; ++i) {
-            int at = i;
-            for (; at > 0 && idOf(order[static_cast<std::size_t>(at - 1)]) > idOf(i); --at)
-                order[static_cast<std::size_t>(at)] = order[static_cast<std::size_t>(at - 1)];
-            order[static_cast<std::size_t>(at)] = i;
-        }
-        for (int k = 0; k < c.manifold.count; ++k) {
-            const ManifoldPoint& m = c.manifold.points[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
-            ContactPoint& p = points_.emplace_back();
-            p.bodyA = c.bodyA;
-            p.bodyB = bodyB;
-            p.normal = n;
-            // Separation n·(pA − pB) = −depth, split evenly about the reported midpoint.
-            p.localA = toLocal(&a, m.point - n * (m.depth / 2));
-            p.localB = toLocal(b, m.point + n * (m.depth / 2));
-            p.friction = friction;
-            p.restitution = material.bounciness;
-            p.frictionDirection = material.frictionDirection;
-            p.key = mix(pairKey ^ m.id);
-            // v_A − 0 is v_A bit for bit, so the world's side is left out.
-            p.approachVelocity = b ? n.dot(a.velocityAt(m.point) - b->velocityAt(m.point)) : n.dot(a.velocityAt(m.point));
-        }
+    for (const BodyContact& c : manifolds) add(c, bodies, materials);
+}
+
+void ContactSet::add(const BodyContact& c, std::span<const RigidBody> bodies, std::span<const BodyMaterial> materials) {
+    const int bodyB = c.bodyB == kStaticWorld ? kWorldBody : c.bodyB;
+    const BodyMaterial& material = materials[static_cast<std::size_t>(c.bodyA)];
+    // Doom: μ is body A's, lowered to B's when B's is lower.
+    Real friction = material.friction;
+    if (bodyB != kWorldBody) friction = std::min(friction, materials[static_cast<std::size_t>(bodyB)].friction);
+    const std::uint64_t pairKey = mix(mix(static_cast<std::uint64_t>(c.bodyA)) ^
+                                      static_cast<std::uint64_t>(c.bodyB == kStaticWorld ? (1ull << 32) + static_cast<std::uint64_t>(c.staticShape)
+                                                                                         : static_cast<std::uint64_t>(c.bodyB)));
+    const RigidBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
+    const RigidBody* b = bodyOrNull(bodies, bodyB);
+    const Vec3& n = c.manifold.normal;
+    // By feature id, not as the manifold lists them (deepest first, which swaps between
+    // equally deep corners of a resting box): rows in the same order step after step.
+    // (Insertion by hand: std::sort on a four-element array trips GCC's -Warray-bounds.)
+    std::array<int, Manifold::kMaxPoints> order{};
+    const auto idOf = [&](int i) { return c.manifold.points[static_cast<std::size_t>(i)].id; };
+    for (int i = 0; i < c.manifold.count; ++i) {
+        int at = i;
+        for (; at > 0 && idOf(order[static_cast<std::size_t>(at - 1)]) > idOf(i); --at)
+            order[static_cast<std::size_t>(at)] = order[static_cast<std::size_t>(at - 1)];
+        order[static_cast<std::size_t>(at)] = i;
+    }
+    for (int k = 0; k < c.manifold.count; ++k) {
+        const ManifoldPoint& m = c.manifold.points[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
+        ContactPoint& p = points_.emplace_back();
+        p.bodyA = c.bodyA;
+        p.bodyB = bodyB;
+        p.normal = n;
+        // Separation n·(pA − pB) = −depth, split evenly about the reported midpoint.
+        p.localA = toLocal(&a, m.point - n * (m.depth / 2));
+        p.localB = toLocal(b, m.point + n * (m.depth / 2));
+        p.friction = friction;
+        p.restitution = material.bounciness;
+        p.frictionDirection = material.frictionDirection;
+        p.key = mix(pairKey ^ m.id);
+        // v_A − 0 is v_A bit for bit, so the world's side is left out.
+        p.approachVelocity = b ? n.dot(a.velocityAt(m.point) - b->velocityAt(m.point)) : n.dot(a.velocityAt(m.point));
+    }
+}
+
+void ContactSet::keep(std::span<const ContactPoint> points, std::span<const RigidBody> bodies) {
+    const std::size_t first = points_.size();
+    points_.insert(points_.end(), points.begin(), points.end());
+    for (std::size_t k = first; k < points_.size(); ++k) {
+        ContactPoint& p = points_[k];
+        const RigidBody& a = bodies[static_cast<std::size_t>(p.bodyA)];
+        const RigidBody* b = bodyOrNull(bodies, p.bodyB);
+        const Vec3 at = (toWorld(&a, p.localA) + toWorld(b, p.localB)) / 2;
+        p.approachVelocity = b ? p.normal.dot(a.velocityAt(at) - b->velocityAt(at)) : p.normal.dot(a.velocityAt(at));
     }
 }
 

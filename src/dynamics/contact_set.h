@@ -70,6 +70,13 @@ public:
     // whether it bounces, is taken from the bodies as they are now.
     void gather(const std::vector<BodyContact>& manifolds, std::span<const RigidBody> bodies,
                 std::span<const BodyMaterial> materials);
+    // gather in parts: clear, then each manifold's points appended by add (as gather makes
+    // them) or by keep: points an earlier gather made, kept (body-fixed, so valid at the bodies'
+    // current poses) but for their approach velocities, taken anew from the bodies as they are
+    // now at the midpoint of each point's pA and pB.
+    void clear() { points_.clear(); }
+    void add(const BodyContact& manifold, std::span<const RigidBody> bodies, std::span<const BodyMaterial> materials);
+    void keep(std::span<const ContactPoint> points, std::span<const RigidBody> bodies);
     std::span<const ContactPoint> points() const { return points_; }
     std::size_t size() const { return points_.size(); }
 

@@ -31,6 +31,20 @@ struct World::State {
     std::vector<RigidPose> poses;
     std::vector<BodyContact> manifolds;
     ContactSet contacts;
+    // The last search at a step's start and what it found, kept while it covers what a new one
+    // would find (see findContacts).
+    struct ContactSearch {
+        bool known = false;
+        std::uint64_t version = 0;  // the collision world's
+        std::vector<RigidPose> poses;  // per body: where the search last looked around it
+        std::vector<std::uint8_t> awake;
+        std::vector<BodyContact> manifolds;
+        std::vector<ContactPoint> points;
+        std::vector<std::size_t> firstPoint;  // per manifold: its first point in `points`
+        std::vector<std::uint8_t> moving;     // scratch: the bodies searched around again
+        std::vector<BodyContact> fresh;       // scratch: what that search found
+    };
+    ContactSearch search;
 
     // Rest: one monitor per figure, and who is awake.
     std::vector<RestMonitor> rest;
@@ -67,7 +81,9 @@ struct World::State {
 
     void substep(Real dt);
     void findContacts(Real dt);
-    void findContactsOnce(Real dt);
+    void findContactsOnce(Real dt, std::span<const std::uint8_t> around, std::vector<BodyContact>& out);
+    bool searchAgain(Real dt);
+    void rememberSearch();
     void buildIslands();
     template <class Run>
     void forEachIsland(Run run);

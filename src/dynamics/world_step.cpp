@@ -4,12 +4,16 @@
 
 #include <algorithm>
 #include <numeric>
+#include <tuple>
 
 namespace af {
 
 namespace {
 
 constexpr Real kPenetrationTolerance = 1e-3;  // units beyond the contact slop worth another projection
+// The start-of-step search looks this fraction of contactMargin farther than it must, so that
+// its answer stands while the bodies move less than that (see World::State::findContacts).
+constexpr Real kSearchSlack = 1e-4;
 
 int findRoot(std::vector<int>& parent, int i) {
     while (parent[static_cast<std::size_t>(i)] != i) {
@@ -48,15 +52,30 @@ void World::step() {
 // the step (g·dt², 0.3 units at 60 Hz). This runs before the velocities are advanced, so that
 // each point's bounce is judged from the velocity the bodies arrived with. Resting bodies are not looked at,
 // unless an awake body touches them: then their figure wakes and the search runs again.
+//
+// The search looks a slack σ (kSearchSlack · contactMargin) farther. A pair it found nothing for
+// was then farther apart than its margin + σ; as long as each of its bodies' surfaces has moved
+// less than σ/2 since, with less than σ/2 to travel in this step (what its margin adds for it
+// now), the pair is still out of reach, and the points found for pairs of such bodies, fixed to
+// them, serve again (their approach velocities taken anew). Only the bodies that moved more are
+// searched around again. A resting figure, whose bodies creep by rounding, keeps its contacts
+// step after step; each body's contacts depend on its own motion and its partners', never on
+// bodies elsewhere, so a figure steps the same whatever happens apart from it.
 void World::State::findContacts(Real dt) {
     if (collision.bodyCount() == 0) return;
+    if (searchAgain(dt) && !wakeTouched()) return;
     do {
-        findContactsOnce(dt);
+        findContactsOnce(dt, bodyAwake, manifolds);
     } while (wakeTouched());
     contacts.gather(manifolds, bodies, materials);
+    search.known = true;
+    search.version = collision.version();
+    search.poses = poses;
+    search.awake = bodyAwake;
+    rememberSearch();
 }
 
-void World::State::findContactsOnce(Real dt) {
+void World::State::findContactsOnce(Real dt, std::span<const std::uint8_t> around, std::vector<BodyContact>& out) {
     reach.resize(bodies.size());
     moves.resize(bodies.size());
     poses.resize(bodies.size());
@@ -66,7 +85,71 @@ void World::State::findContactsOnce(Real dt) {
         moves[i] = dt * b.linearVelocity;
         poses[i] = {b.position, b.rotation()};
     }
-    collision.findContacts(poses, moves, reach, settings.contactMargin, bodyAwake, manifolds);
+    collision.findContacts(poses, moves, reach, settings.contactMargin * (1 + kSearchSlack), around, out);
+}
+
+// The search of the last step with what the bodies that moved too far find now, in the order of a
+// whole search (body pairs by their bodies, then each body against the statics); false when the
+// last search cannot serve (none yet, or the collision world or the awake bodies changed).
+bool World::State::searchAgain(Real dt) {
+    if (!search.known || search.version != collision.version() || search.poses.size() != bodies.size() ||
+        search.awake != bodyAwake)
+        return false;
+    const Real allowed = settings.contactMargin * kSearchSlack / 2;
+    search.moving.assign(bodies.size(), 0);
+    bool anyMoving = false;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        if (!bodyAwake[i]) continue;
+        const RigidBody& b = bodies[i];
+        const RigidPose& then = search.poses[i];
+        const Real travel = dt * (b.angularVelocity.norm() * radius[i] + b.linearVelocity.norm());
+        const Real moved = (b.position - then.position).norm() + (b.rotation() - then.rotation).norm() * radius[i];
+        if (travel + moved <= allowed) continue;
+        search.moving[i] = 1;
+        anyMoving = true;
+    }
+    search.fresh.clear();
+    if (anyMoving) findContactsOnce(dt, search.moving, search.fresh);
+    const auto moving = [&](int body) { return body != kStaticWorld && search.moving[static_cast<std::size_t>(body)]; };
+    const auto order = [](const BodyContact& c) {
+        return c.bodyB == kStaticWorld ? std::tuple(1, c.bodyA, c.staticShape) : std::tuple(0, c.bodyA, c.bodyB);
+    };
+    manifolds.clear();
+    contacts.clear();
+    std::size_t f = 0;
+    const auto addFresh = [&](std::size_t end) {
+        for (; f < end; ++f) {
+            manifolds.push_back(search.fresh[f]);
+            contacts.add(search.fresh[f], bodies, materials);
+        }
+    };
+    for (std::size_t k = 0; k < search.manifolds.size(); ++k) {
+        const BodyContact& c = search.manifolds[k];
+        if (moving(c.bodyA) || moving(c.bodyB)) continue;
+        std::size_t end = f;
+        while (end < search.fresh.size() && order(search.fresh[end]) < order(c)) ++end;
+        addFresh(end);
+        manifolds.push_back(c);
+        contacts.keep(std::span(search.points).subspan(search.firstPoint[k], static_cast<std::size_t>(c.manifold.count)),
+                      bodies);
+    }
+    addFresh(search.fresh.size());
+    if (!anyMoving) return true;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (search.moving[i]) search.poses[i] = poses[i];
+    rememberSearch();
+    return true;
+}
+
+void World::State::rememberSearch() {
+    search.manifolds = manifolds;
+    search.points.assign(contacts.points().begin(), contacts.points().end());
+    search.firstPoint.clear();
+    std::size_t first = 0;
+    for (const BodyContact& c : manifolds) {
+        search.firstPoint.push_back(first);
+        first += static_cast<std::size_t>(c.manifold.count);
+    }
 }
 
 // Moves poses to the bodies' current poses; returns whether every awake body's surface stayed

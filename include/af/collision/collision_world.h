@@ -68,6 +68,9 @@ public:
     void removeStatic(int staticShape);
 
     std::size_t bodyCount() const { return bodies_.size(); }
+    // Changes with every call that changes what findContacts can find (adding bodies or statics,
+    // excluding pairs, removing statics), so that a caller may keep an answer while it holds.
+    std::uint64_t version() const { return version_; }
     std::size_t staticCount() const { return statics_.size(); }
     const Polytope& bodyShape(int body) const { return bodies_[static_cast<std::size_t>(body)].shape.polytope(); }
     const CollisionFilter& filter(int body) const { return bodies_[static_cast<std::size_t>(body)].filter; }
@@ -131,6 +134,7 @@ private:
     std::vector<Vec3> centres_;  // world centres of the bounding spheres, per findContacts call
     std::vector<Real> staticMargins_;  // each body's margin against the static world, likewise
     std::vector<std::pair<int, int>> pairs_;
+    std::uint64_t version_ = 0;
 };
 
 }  // namespace af
