@@ -168,6 +168,7 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
         const int wrong = check(rows, responses, problem, x, states, wTolerance, settings.tolerance);
         if (wrong == 0) {
             refinable_ = true;
+            slidingAnswersKept_ = false;
             return finish(x, states, result);
         }
         for (std::size_t i = 0; i < n; ++i) {
@@ -479,18 +480,28 @@ bool SparseLcpSolver::refine(std::span<const ConstraintRow> rows, std::span<cons
             beta_[j] = slidingSlope(problem, states, row) * rhs_[static_cast<std::size_t>(source(problem, row))];
         }
         solveSmallAgain(k);
-        std::fill(correction_.begin(), correction_.end(), 0);
-        std::fill(use_.begin(), use_.end(), 0);
-        for (std::size_t j = 0; j < k; ++j) {
-            const std::size_t row = static_cast<std::size_t>(slidingRows_[j]);
-            correction_[row] = beta_[j];
-            use_[row] = 1;
-            x[row] += beta_[j];
+        // The free rows' answer to a unit impulse of each sliding row, −A_FF⁻¹ A_F,s, is kept
+        // with the factorisation: a resting figure refines with it step after step, and then
+        // follows its sliding rows without a solve.
+        if (!slidingAnswersKept_) {
+            slidingAnswers_.assign(k * n, 0);
+            zeros_.assign(n, 0);
+            for (std::size_t j = 0; j < k; ++j) {
+                const std::size_t row = static_cast<std::size_t>(slidingRows_[j]);
+                std::fill(correction_.begin(), correction_.end(), 0);
+                std::fill(use_.begin(), use_.end(), 0);
+                correction_[row] = 1;
+                use_[row] = 1;
+                solveFree(rows, responses, zeros_, correction_, std::span<Real>(&slidingAnswers_[j * n], n));
+            }
+            slidingAnswersKept_ = true;
         }
-        zeros_.assign(n, 0);
-        solveFree(rows, responses, zeros_, correction_, correction_);
-        for (std::size_t i = 0; i < n; ++i)
-            if (free_[i]) rhs_[i] += correction_[i];
+        for (std::size_t j = 0; j < k; ++j) {
+            x[static_cast<std::size_t>(slidingRows_[j])] += beta_[j];
+            const Real* answer = &slidingAnswers_[j * n];
+            for (std::size_t i = 0; i < n; ++i)
+                if (free_[i]) rhs_[i] += beta_[j] * answer[i];
+        }
     }
     for (std::size_t i = 0; i < n; ++i)
         if (free_[i]) x[i] += rhs_[i];

@@ -84,6 +84,8 @@ private:
     // factor_, free_, slidingRows_ and the LU of small_ (with smallPivots_) are those of the last
     // answer, found by a trial: a guess in its pattern can be refined with them (refine()).
     bool refinable_ = false;
+    bool slidingAnswersKept_ = false;  // slidingAnswers_ belong to factor_ (refine())
+    std::vector<Real> slidingAnswers_;
     std::vector<int> smallPivots_;
     std::vector<Real> correction_;
     std::vector<Real> lo_, hi_, w_, rhs_, paths_, small_, beta_;

@@ -431,6 +431,49 @@ TEST(SparseLcp, AGuessInTheLastAnswersPatternIsRefinedWithoutFactorising) {
 }
 
 // Three rows of one joint that repeat each other and carry no CFM: no pivot for the third.
+// A figure resting for several steps refines each one from the last (its sliding rows' answers
+// kept with the factorisation from the first): every answer is the fresh solve's.
+TEST(SparseLcp, StepAfterStepTheRefinedAnswersAreTheFreshOnes) {
+    HumanoidSolves h;
+    ASSERT_EQ(h.solve().status, LcpStatus::Solved);
+    std::fill(h.x.begin(), h.x.end(), 0);  // solved again from its pattern alone: by one trial
+    const SparseLcpResult first = h.solve();
+    ASSERT_EQ(first.trials, 1);
+    ASSERT_GT(first.couplingSolves, 0) << "some contacts slide";
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<Real> u(-1, 1);
+    const std::span<const ConstraintRow> rows = h.in.rows.all();
+    std::vector<Real> b(h.problem.b.begin(), h.problem.b.end());
+    std::vector<Vec3> dv(h.scene.bodies.size()), dw(h.scene.bodies.size());
+    for (int step = 0; step < 4; ++step) {
+        for (std::size_t k = 0; k < dv.size(); ++k) {  // the bodies' velocities moved by 1e-9
+            dv[k] = 1e-9 * Vec3(u(rng), u(rng), u(rng));
+            dw[k] = 1e-9 * Vec3(u(rng), u(rng), u(rng));
+        }
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            const ConstraintRow& r = rows[i];
+            const auto a = static_cast<std::size_t>(r.bodyA);
+            b[i] -= r.linearA.dot(dv[a]) + r.angularA.dot(dw[a]);
+            if (r.bodyB == kWorldBody) continue;
+            const auto c = static_cast<std::size_t>(r.bodyB);
+            b[i] -= r.linearB.dot(dv[c]) + r.angularB.dot(dw[c]);
+        }
+        h.problem.b = b;
+        const SparseLcpResult refined = h.solve();
+        ASSERT_EQ(refined.status, LcpStatus::Solved);
+        EXPECT_TRUE(refined.refined) << "step " << step;
+        HumanoidSolves fresh;
+        fresh.problem.b = b;
+        ASSERT_EQ(fresh.solve().status, LcpStatus::Solved);
+        Real largest = 0, worst = 0;
+        for (std::size_t i = 0; i < b.size(); ++i) {
+            largest = std::max(largest, std::abs(fresh.x[i]));
+            worst = std::max(worst, std::abs(h.x[i] - fresh.x[i]));
+        }
+        EXPECT_LE(worst, 1e-9 * largest) << "step " << step;
+    }
+}
+
 // A guess in the last answer's pattern whose rows at a bound have drifted off them (sliding rows
 // off ±μ times their normals) is put back on them and refined: its free rows then follow that
 // move, and the answer is the last one.
