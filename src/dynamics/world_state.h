@@ -45,6 +45,15 @@ struct World::State {
         std::vector<BodyContact> fresh;       // scratch: what that search found
     };
     ContactSearch search;
+    bool searchKept = false;  // this step's search was the last one, whole (no body searched around)
+    // What the last settle found (settleNewContacts), kept likewise.
+    struct SettledContacts {
+        bool known = false;
+        std::vector<RigidPose> poses;
+        std::vector<BodyContact> manifolds;
+        std::vector<ContactPoint> points;
+    };
+    SettledContacts settled;
 
     // Rest: one monitor per figure, and who is awake.
     std::vector<RestMonitor> rest;
@@ -88,7 +97,7 @@ struct World::State {
     template <class Run>
     void forEachIsland(Run run);
     void settleNewContacts();
-    bool posesMovedLessThan(Real distance);
+    Real movePoses(Real& sinceSettled);
 };
 
 }  // namespace af

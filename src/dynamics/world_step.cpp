@@ -63,7 +63,9 @@ void World::step() {
 // bodies elsewhere, so a figure steps the same whatever happens apart from it.
 void World::State::findContacts(Real dt) {
     if (collision.bodyCount() == 0) return;
+    searchKept = false;
     if (searchAgain(dt) && !wakeTouched()) return;
+    searchKept = false;
     do {
         findContactsOnce(dt, bodyAwake, manifolds);
     } while (wakeTouched());
@@ -134,6 +136,7 @@ bool World::State::searchAgain(Real dt) {
                       bodies);
     }
     addFresh(search.fresh.size());
+    searchKept = !anyMoving;
     if (!anyMoving) return true;
     for (std::size_t i = 0; i < bodies.size(); ++i)
         if (search.moving[i]) search.poses[i] = poses[i];
@@ -152,19 +155,25 @@ void World::State::rememberSearch() {
     }
 }
 
-// Moves poses to the bodies' current poses; returns whether every awake body's surface stayed
-// within `distance` of where it was: its centre's move plus what the change of rotation does to its
-// farthest vertex (at most |R₁ − R₀|_F · radius).
-bool World::State::posesMovedLessThan(Real distance) {
-    bool less = true;
+// Moves poses to the bodies' current poses; returns how far an awake body's surface moved at
+// most from where it was: its centre's move plus what the change of rotation does to its farthest
+// vertex (at most |R₁ − R₀|_F · radius). sinceSettled: the same from the poses of the last settle.
+Real World::State::movePoses(Real& sinceSettled) {
+    const auto distance = [&](const RigidPose& now, const RigidPose& then, std::size_t i) {
+        return (now.position - then.position).norm() + (now.rotation - then.rotation).norm() * radius[i];
+    };
+    const bool settledKnown = settled.known && settled.poses.size() == bodies.size();
+    Real moved = 0;
+    sinceSettled = settledKnown ? 0 : kInfinity;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const RigidPose now{bodies[i].position, bodies[i].rotation()};
-        if (bodyAwake[i] && (now.position - poses[i].position).norm() +
-                                    (now.rotation - poses[i].rotation).norm() * radius[i] >= distance)
-            less = false;
+        if (bodyAwake[i]) {
+            moved = std::max(moved, distance(now, poses[i], i));
+            if (settledKnown) sinceSettled = std::max(sinceSettled, distance(now, settled.poses[i], i));
+        }
         poses[i] = now;
     }
-    return less;
+    return moved;
 }
 
 // Awake bodies joined by joints, contacts or rows of the extra source form an island; the world
@@ -267,15 +276,29 @@ void World::State::substep(Real dt) {
 // whole search, without the broadphase and the pairs that stayed apart (a resting figure).
 void World::State::settleNewContacts() {
     if (collision.bodyCount() == 0) return;
-    const bool stayedApart = posesMovedLessThan(settings.contactMargin / 4) && settings.contactMargin > 0;
-    if (stayedApart) {
-        collision.findContactsAgain(poses, 0, manifolds);
+    Real sinceSettled = 0;
+    const Real moved = movePoses(sinceSettled);
+    const bool stayedApart = moved < settings.contactMargin / 4 && settings.contactMargin > 0;
+    if (stayedApart && searchKept && sinceSettled <= settings.contactMargin * kSearchSlack / 2) {
+        // The pairs are those the last settle looked at, and no body has moved more than σ/2
+        // since: its points, body-fixed, stand as the search's do (see findContacts).
+        manifolds = settled.manifolds;
+        contacts.clear();
+        contacts.keep(settled.points, bodies);
     } else {
-        std::fill(reach.begin(), reach.end(), Real(0));
-        std::fill(moves.begin(), moves.end(), Vec3::Zero());
-        collision.findContacts(poses, moves, reach, 0, bodyAwake, manifolds);
+        if (stayedApart) {
+            collision.findContactsAgain(poses, 0, manifolds);
+        } else {
+            std::fill(reach.begin(), reach.end(), Real(0));
+            std::fill(moves.begin(), moves.end(), Vec3::Zero());
+            collision.findContacts(poses, moves, reach, 0, bodyAwake, manifolds);
+        }
+        contacts.gather(manifolds, bodies, materials);
+        settled.known = true;
+        settled.poses = poses;
+        settled.manifolds = manifolds;
+        settled.points.assign(contacts.points().begin(), contacts.points().end());
     }
-    contacts.gather(manifolds, bodies, materials);
     const Real allowed = settings.contact.slop + kPenetrationTolerance;
     if (af::maxPenetration(contacts.points(), bodies) <= allowed) return;
     forEachIsland([&](Island& island, IslandContext& shared) {
