@@ -231,22 +231,31 @@ bool SparseRowFactor::factor(std::span<const ConstraintRow> rows, std::span<cons
     size_.assign(groups, 0);
     local_.assign(rows.size(), -1);
     varStart_.assign(groups + 1, 0);
+    rowOfVariable_.clear();
     for (std::size_t g = 0; g < groups; ++g) {
         for (int k = rowStart_[g]; k < rowStart_[g + 1]; ++k) {
             const int r = groupRows_[static_cast<std::size_t>(k)];
-            if (free[static_cast<std::size_t>(r)]) local_[static_cast<std::size_t>(r)] = size_[g]++;
+            if (!free[static_cast<std::size_t>(r)]) continue;
+            local_[static_cast<std::size_t>(r)] = size_[g]++;
+            rowOfVariable_.push_back(r);
         }
         varStart_[g + 1] = varStart_[g] + size_[g];
     }
     panelStart_.resize(groups + 1);
     panelHeight_.resize(groups);
     blockOffset_.resize(front_.size());
+    belowStart_.resize(groups + 1);
+    belowVariable_.clear();
     int total = 0;
     for (std::size_t g = 0; g < groups; ++g) {
         int height = size_[g];
+        belowStart_[g] = static_cast<int>(belowVariable_.size());
         for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
+            const std::size_t f = static_cast<std::size_t>(front_[static_cast<std::size_t>(s)]);
             blockOffset_[static_cast<std::size_t>(s)] = height;
-            height += size_[static_cast<std::size_t>(front_[static_cast<std::size_t>(s)])];
+            height += size_[f];
+            if (size_[g] > 0)
+                for (int r = 0; r < size_[f]; ++r) belowVariable_.push_back(varStart_[f] + r);
         }
         panelStart_[g] = total;
         panelHeight_[g] = height;
@@ -457,12 +466,9 @@ Real SparseRowFactor::scaledDot(std::span<const Real> u, std::span<const int> uG
 
 void SparseRowFactor::solve(std::span<Real> x) const {
     const std::size_t groups = groupKeys_.size();
-    work_.resize(static_cast<std::size_t>(varStart_[groups]));
-    for (std::size_t g = 0; g < groups; ++g)
-        for (int k = rowStart_[g]; k < rowStart_[g + 1]; ++k) {
-            const std::size_t r = static_cast<std::size_t>(groupRows_[static_cast<std::size_t>(k)]);
-            if (local_[r] >= 0) work_[static_cast<std::size_t>(varStart_[g] + local_[r])] = x[r];
-        }
+    const std::size_t vars = rowOfVariable_.size();
+    work_.resize(vars);
+    for (std::size_t v = 0; v < vars; ++v) work_[v] = x[static_cast<std::size_t>(rowOfVariable_[v])];
     for (std::size_t g = 0; g < groups; ++g) {
         const int n = size_[g], height = panelHeight_[g];
         if (n == 0) continue;
@@ -472,14 +478,13 @@ void SparseRowFactor::solve(std::span<Real> x) const {
             const Real* l = &panel[j * height];
             for (int i = j + 1; i < n; ++i) y[i] -= l[i] * y[j];
         }
-        for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
-            const std::size_t f = static_cast<std::size_t>(front_[static_cast<std::size_t>(s)]);
-            Real* yf = &work_[static_cast<std::size_t>(varStart_[f])];
-            const int o = blockOffset_[static_cast<std::size_t>(s)], nf = size_[f];
-            for (int j = 0; j < n; ++j) {
-                const Real* l = &panel[j * height + o];
-                for (int r = 0; r < nf; ++r) yf[r] -= l[r] * y[j];
-            }
+        // The rows below the diagonal block, all front groups at once through their variables.
+        const int* below = &belowVariable_[static_cast<std::size_t>(belowStart_[g])];
+        const int m = height - n;
+        for (int j = 0; j < n; ++j) {
+            const Real* l = &panel[j * height + n];
+            const Real yj = y[j];
+            for (int r = 0; r < m; ++r) work_[static_cast<std::size_t>(below[r])] -= l[r] * yj;
         }
         for (int j = 0; j < n; ++j) y[j] /= panel[j * (height + 1)];
     }
@@ -488,16 +493,13 @@ void SparseRowFactor::solve(std::span<Real> x) const {
         if (n == 0) continue;
         const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
         Real* y = &work_[static_cast<std::size_t>(varStart_[g])];
-        for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
-            const std::size_t f = static_cast<std::size_t>(front_[static_cast<std::size_t>(s)]);
-            const Real* yf = &work_[static_cast<std::size_t>(varStart_[f])];
-            const int o = blockOffset_[static_cast<std::size_t>(s)], nf = size_[f];
-            for (int j = 0; j < n; ++j) {
-                const Real* l = &panel[j * height + o];
-                Real sum = 0;
-                for (int r = 0; r < nf; ++r) sum += l[r] * yf[r];
-                y[j] -= sum;
-            }
+        const int* below = &belowVariable_[static_cast<std::size_t>(belowStart_[g])];
+        const int m = height - n;
+        for (int j = 0; j < n; ++j) {
+            const Real* l = &panel[j * height + n];
+            Real sum = 0;
+            for (int r = 0; r < m; ++r) sum += l[r] * work_[static_cast<std::size_t>(below[r])];
+            y[j] -= sum;
         }
         for (int j = n; j-- > 0;) {
             const Real* l = &panel[j * height];
@@ -506,11 +508,7 @@ void SparseRowFactor::solve(std::span<Real> x) const {
             y[j] -= sum;
         }
     }
-    for (std::size_t g = 0; g < groups; ++g)
-        for (int k = rowStart_[g]; k < rowStart_[g + 1]; ++k) {
-            const std::size_t r = static_cast<std::size_t>(groupRows_[static_cast<std::size_t>(k)]);
-            if (local_[r] >= 0) x[r] = work_[static_cast<std::size_t>(varStart_[g] + local_[r])];
-        }
+    for (std::size_t v = 0; v < vars; ++v) x[static_cast<std::size_t>(rowOfVariable_[v])] = work_[v];
 }
 
 }  // namespace af

@@ -105,8 +105,9 @@ private:
 
     // Values (factor): per group, its free rows; per group a column panel holding its diagonal
     // block (L below the unit diagonal, D on it) above the blocks of its front groups.
-    std::vector<int> size_, local_, varStart_;
+    std::vector<int> size_, local_, varStart_, rowOfVariable_;
     std::vector<int> panelStart_, panelHeight_, blockOffset_;
+    std::vector<int> belowStart_, belowVariable_;  // per group: the variable of each panel row below its block
     std::vector<Real> values_, diagonal_;
     std::vector<Real> pivots_;  // D per variable, contiguous (scaledDot)
     std::vector<Real> scaled_, update_;  // scratch of eliminate()
