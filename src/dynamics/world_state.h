@@ -46,6 +46,7 @@ struct World::State {
     };
     ContactSearch search;
     bool searchKept = false;  // this step's search was the last one, whole (no body searched around)
+    bool islandsOfSearch = false;  // the islands are those of the last search's points (buildIslands)
     // What the last settle found (settleNewContacts), kept likewise.
     struct SettledContacts {
         bool known = false;
@@ -95,7 +96,7 @@ struct World::State {
     void rememberSearch();
     void buildIslands();
     template <class Run>
-    void forEachIsland(Run run);
+    void forEachIsland(bool ofSearch, Run run);
     void settleNewContacts();
     Real movePoses(Real& sinceSettled);
 };

@@ -228,10 +228,13 @@ void World::State::buildIslands() {
 }
 
 // Builds the islands of the current contact points, gathers each one and hands it to `run`,
-// which returns whether the island changed (and is written back).
+// which returns whether the island changed (and is written back). ofSearch: the points are the
+// search's (a step's start); islands built of the same search before are the same, unless the
+// extra source, which may change its rows, joins bodies too.
 template <class Run>
-void World::State::forEachIsland(Run run) {
-    buildIslands();
+void World::State::forEachIsland(bool ofSearch, Run run) {
+    if (!(ofSearch && searchKept && islandsOfSearch && !extraRows)) buildIslands();
+    islandsOfSearch = ofSearch;
     IslandContext shared{settings, extraRows, bodies, report, warmStart};
     const IslandWorld world{bodies, joints, contacts.points(), localOf};
     for (std::size_t k = 0; k < islandCount; ++k) {
@@ -255,7 +258,7 @@ void World::State::substep(Real dt) {
         b.force.setZero();
         b.torque.setZero();
     }
-    forEachIsland([&](Island& island, IslandContext& shared) {
+    forEachIsland(true, [&](Island& island, IslandContext& shared) {
         island.step(dt, shared);
         return true;
     });
@@ -301,7 +304,7 @@ void World::State::settleNewContacts() {
     }
     const Real allowed = settings.contact.slop + kPenetrationTolerance;
     if (af::maxPenetration(contacts.points(), bodies) <= allowed) return;
-    forEachIsland([&](Island& island, IslandContext& shared) {
+    forEachIsland(false, [&](Island& island, IslandContext& shared) {
         if (island.maxPenetration() <= allowed) return false;
         island.project(shared);
         return true;
