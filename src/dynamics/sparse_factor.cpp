@@ -422,14 +422,14 @@ void SparseRowFactor::forward(std::span<Real> y, std::span<std::uint8_t> active)
         Real* yg = &y[static_cast<std::size_t>(varStart_[g])];
         for (int j = 0; j < n; ++j)
             for (int i = j + 1; i < n; ++i) yg[i] -= panel[j * height + i] * yg[j];
-        for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) {
-            const std::size_t f = static_cast<std::size_t>(front_[static_cast<std::size_t>(s)]);
-            Real* yf = &y[static_cast<std::size_t>(varStart_[f])];
-            const int o = blockOffset_[static_cast<std::size_t>(s)];
-            for (int j = 0; j < n; ++j)
-                for (int r = 0; r < size_[f]; ++r) yf[r] -= panel[j * height + o + r] * yg[j];
-            active[f] = 1;
+        const int* below = &belowVariable_[static_cast<std::size_t>(belowStart_[g])];
+        const int m = height - n;
+        for (int j = 0; j < n; ++j) {
+            const Real* l = &panel[j * height + n];
+            const Real yj = yg[j];
+            for (int r = 0; r < m; ++r) y[static_cast<std::size_t>(below[r])] -= l[r] * yj;
         }
+        for (int s = frontStart_[g]; s < frontStart_[g + 1]; ++s) active[static_cast<std::size_t>(front_[static_cast<std::size_t>(s)])] = 1;
     }
 }
 
