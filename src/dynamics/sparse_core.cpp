@@ -147,7 +147,11 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     core.findex = coreFindex_;
     core.mu = coreMu_;
     core.cfm = coreCfm_;
-    coreSolver_.setSettings(settings);
+    // The answer is checked with every row below: the solver's own residual, a product with the
+    // whole core matrix, would tell nothing more.
+    LcpExactSettings coreSettings = settings;
+    coreSettings.computeResidual = false;
+    coreSolver_.setSettings(coreSettings);
     if (coreSolver_.solve(core, coreX_, coreStates_).status != LcpStatus::Solved) return -1;
 
     // The free rows follow: x_F += A_FF⁻¹ (0 − A_FU x_U).
