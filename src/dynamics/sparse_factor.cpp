@@ -422,7 +422,7 @@ void SparseRowFactor::forward(std::span<Real> y, std::span<std::uint8_t> active)
         Real* yg = &y[static_cast<std::size_t>(varStart_[g])];
         for (int j = 0; j < n; ++j)
             for (int i = j + 1; i < n; ++i) yg[i] -= panel[j * height + i] * yg[j];
-        const int* below = &belowVariable_[static_cast<std::size_t>(belowStart_[g])];
+        const int* below = belowVariable_.data() + belowStart_[g];  // empty for a group without front
         const int m = height - n;
         for (int j = 0; j < n; ++j) {
             const Real* l = &panel[j * height + n];
@@ -479,7 +479,7 @@ void SparseRowFactor::solve(std::span<Real> x) const {
             for (int i = j + 1; i < n; ++i) y[i] -= l[i] * y[j];
         }
         // The rows below the diagonal block, all front groups at once through their variables.
-        const int* below = &belowVariable_[static_cast<std::size_t>(belowStart_[g])];
+        const int* below = belowVariable_.data() + belowStart_[g];  // empty for a group without front
         const int m = height - n;
         for (int j = 0; j < n; ++j) {
             const Real* l = &panel[j * height + n];
@@ -493,7 +493,7 @@ void SparseRowFactor::solve(std::span<Real> x) const {
         if (n == 0) continue;
         const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
         Real* y = &work_[static_cast<std::size_t>(varStart_[g])];
-        const int* below = &belowVariable_[static_cast<std::size_t>(belowStart_[g])];
+        const int* below = belowVariable_.data() + belowStart_[g];  // empty for a group without front
         const int m = height - n;
         for (int j = 0; j < n; ++j) {
             const Real* l = &panel[j * height + n];
