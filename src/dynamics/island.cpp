@@ -83,7 +83,7 @@ void Island::writeRows(IslandContext& context, bool reuseRestRows) {
         for (int r = 0; r < range.limitRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(64 + r));
         for (int r = 0; r < range.frictionRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(128 + r));
     }
-    writeContactRows(points_, bodies_, rowInertia_, context.settings.contact, rows_, rowKeys_);
+    writeContactRows(nearPointsOnly_ ? nearPoints_ : points_, bodies_, rowInertia_, context.settings.contact, rows_, rowKeys_);
     if (!context.extraRows) return;
     for (std::size_t i = 0; i < bodyIds_.size(); ++i)
         context.worldBodies[static_cast<std::size_t>(bodyIds_[i])] = bodies_[i];

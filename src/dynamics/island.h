@@ -83,6 +83,10 @@ private:
     bool solveSparse(const WarmStartCache& guess, IslandContext& context);
     void statesFromImpulses(const IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
+    // The velocity solve: rows written at the step's start, solved, impulses applied.
+    bool solveVelocityRows(Real dt, IslandContext& context, bool reuseRestRows);
+    void leaveOutFarPoints(Real dt, const IslandContext& context);
+    bool bringBackClosingPoints(Real dt, const IslandContext& context);
     bool closeDrift(Real dt, IslandContext& context);
     // The joints' rows alone at the bodies' poses, without keys: what SHAKE reads. rows_ is whole
     // again after the next writeRows.
@@ -113,6 +117,11 @@ private:
     std::vector<RigidBody> bodies_;
     std::vector<Joint> joints_;
     std::vector<ContactPoint> points_;
+    // The points the velocity solve writes rows for, and those it leaves out (see
+    // leaveOutFarPoints); writeRows takes nearPoints_ instead of points_ while nearPointsOnly_.
+    std::vector<ContactPoint> nearPoints_, farPoints_;
+    bool nearPointsOnly_ = false;
+    std::vector<Vec3> linearBefore_, angularBefore_;
     std::span<const int> localOf_;
     bool treeReady_ = false;  // the tree's structure is that of joints_ (same bodies, same joints)
 

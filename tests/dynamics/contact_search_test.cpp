@@ -66,5 +66,27 @@ TEST(ContactSearch, ARestingBoxKeepsTouchingTheFloorStepAfterStep) {
     EXPECT_LT(world.maxPenetration(), world.settings().contact.slop + 1e-6);
 }
 
+// Two resting boxes 0.5 units apart: their point is apart and was not closing, so the velocity
+// solve leaves it out (Island::leaveOutFarPoints). A force that drives the second box into the
+// first within the step (6000 units/s² for 1/60 s: 100 units/s, the gap closed in 1/200 s) must
+// bring the point back into the same step's solve, whose contact row lets the boxes close the
+// gap (and the slop) exactly by the step's end: frictionless, too slow before the force to
+// bounce, equal masses, so −100 units/s shared with a relative speed of gap/dt. Left out, the
+// first box would not move and the second would sink into it.
+TEST(ContactSearch, AForceDrivingARestingBoxIntoItsNeighbourPushesItWithinTheStep) {
+    World world = boxesApart();
+    world.bodies()[1].position.x() = 10.5;
+    for (int i = 0; i < 30; ++i) world.step();
+    ASSERT_LT(world.kineticEnergy(), 1e-9) << "both boxes rest";
+    const Real dt = world.settings().timeStep;
+    const Real gap = (world.bodies()[1].position.x() - 5) - (world.bodies()[0].position.x() + 5) + world.settings().contact.slop;
+    ASSERT_NEAR(gap, 0.55, 1e-6);
+    RigidBody& pushed = world.bodies()[1];
+    pushed.force = Vec3(-6000 / pushed.inverseMass, 0, 0);
+    world.step();
+    EXPECT_NEAR(world.bodies()[0].linearVelocity.x(), -50 + gap / (2 * dt), 1e-6);
+    EXPECT_NEAR(world.bodies()[1].linearVelocity.x(), -50 - gap / (2 * dt), 1e-6);
+}
+
 }  // namespace
 }  // namespace af
