@@ -12,6 +12,21 @@
 // solved again (sparse_lcp.cpp), until the answer holds or the core is too large; then the caller
 // falls back to its other solvers.
 //
+// Rows boxed on both sides by fixed bounds (joint friction) always join the core. The last step's
+// states are no guess for them: the bound is f·|λ| of the joint's previous impulse, which changes
+// as much as the joints' sticking and slipping do, and the states jump from step to step (our
+// humanoid settling on the default map at ca69c12, 29 joint friction rows a step: 1.3k of 2.6k kept
+// their state, 400 went from one bound to the other, with |w| up to several rad/s; none of the
+// switches was a degenerate row, at its bound with w ≈ 0). And a trial that frees them all at once
+// is far off: a figure whose joints all stick is one rigid body on redundant contacts, held so by
+// impulses far beyond the bounds (rows freed by a trial: median 100, a quarter over 18000 times
+// their bound), so a freed row pulls others past their bounds in turn. Kept outside, they were
+// found wrong a few at a time, each time growing the core by a round (a factorisation, the Schur
+// complement and the dense solve again): 2-4 rounds in most steps, and six cores grew too large. In
+// the core the pivoting solver settles them in one round, as a rule. af-sim --solver tree: 1.51G ->
+// 0.97G instructions (the same 104 steps); seeds 0-6: 4.32G -> 3.54G, 560 -> 575 steps (two seeds
+// fall otherwise, with answers within the tolerance).
+//
 // Returns the rows the check found wrong (0: x is the answer), or −1 when the core is too large
 // or could not be solved.
 
@@ -38,7 +53,7 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     const std::size_t n = rows.size();
     inCore_.assign(switched_.begin(), switched_.end());
     for (std::size_t i = 0; i < n; ++i)
-        if (sliding(problem, states, i)) inCore_[i] = 1;
+        if (sliding(problem, states, i) || fixedBox(problem, i)) inCore_[i] = 1;
     for (std::size_t i = 0; i < n; ++i)  // a friction row's normal, then every friction row of a normal
         if (source(problem, i) >= 0 && inCore_[i]) inCore_[static_cast<std::size_t>(source(problem, i))] = 1;
     for (std::size_t i = 0; i < n; ++i)

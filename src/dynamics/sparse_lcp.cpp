@@ -21,7 +21,11 @@ constexpr int kMaxTrials = 2;
 // impact) are better switched together first, keeping the core well below kMaxCore. Bench drop,
 // 600 steps, with a second trial always / up to 10 wrong rows at once to the core / up to 30 /
 // never: 427.5M / 401.3M / 402.6M / 407.6M instructions; grid4's first 200 steps: 9.43G /
-// 8.32G / 7.05G / 7.09G.
+// 8.32G / 7.05G / 7.09G. Rows with fixed boxes (joint friction) join the core anyway and are not
+// counted: counted, they sent many of our humanoid's steps on the default map to a second trial,
+// whose switches grew the core past kMaxCore (at ca69c12, af-sim --solver tree --seed 4: 16
+// give-ups in 108 steps). af-sim --solver tree: 1.04G instructions counted, 0.97G not; seeds 0-3,
+// 5 and 6: 2.69G, 2.67G.
 constexpr int kCoreAfterOneTrial = 32;
 // Times the dense core may grow by the rows its answer finds wrong outside it.
 constexpr int kCoreRounds = 4;
@@ -171,10 +175,12 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
             slidingAnswersKept_ = false;
             return finish(x, states, result);
         }
+        int wrongOutsideCore = 0;  // rows with fixed boxes join the core whatever the trials find
         for (std::size_t i = 0; i < n; ++i) {
             if (next_[i] == states[i]) continue;
             states[i] = next_[i];
             switched_[i] = 1;
+            if (!fixedBox(problem, i)) ++wrongOutsideCore;
         }
         // A friction row whose normal stops pushing has nothing to push with; when the normal
         // pushes again it starts sticking.
@@ -185,10 +191,11 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
             if (!normalPushes && x[static_cast<std::size_t>(s)] == 0) states[i] = LcpRowState::AtLower;
             if (normalPushes && states[i] == LcpRowState::AtLower && lo_[i] == hi_[i]) states[i] = LcpRowState::Free;
         }
-        if (wrong <= kCoreAfterOneTrial) break;
+        if (wrongOutsideCore <= kCoreAfterOneTrial) break;
     }
     // The core, grown by the rows its answer finds wrong outside it, until it holds or is too large.
     for (int round = 0; round < kCoreRounds; ++round) {
+        result.coreRounds = round + 1;
         const int wrong = solveCore(rows, responses, problem, x, states, wTolerance, settings, result);
         if (wrong == 0) return finish(x, states, result);
         if (wrong < 0) break;

@@ -14,8 +14,9 @@
 // keeps them without factorising). When the first trial finds a few rows wrong, or a second
 // one does not settle either (a tumbling figure whose contacts all change at once), the rows
 // they switched are solved as a dense LCP on their Schur complement by the pivoting solver
-// (sparse_core.cpp), and the rows its answer finds wrong outside it join it; if that core grows
-// too large, the solve says so and the caller falls back to its other solvers.
+// (sparse_core.cpp), together with every row boxed by fixed bounds (joint friction, whose last
+// states are no guess), and the rows its answer finds wrong outside it join it; if that core
+// grows too large, the solve says so and the caller falls back to its other solvers.
 
 #include "af/dynamics/lcp.h"
 #include "sparse_factor.h"
@@ -33,6 +34,7 @@ struct SparseLcpResult {
     bool refined = false;                  // the guess refined with the last answer's factorisation
     int couplingSolves = 0;                // trials with sliding friction rows (solved coupled)
     int coreRows = 0;                      // rows of the dense core, when the trials did not settle
+    int coreRounds = 0;                    // times the core was solved (it grows by the rows found wrong)
     int factorisations = 0;
     Real residual = 0;                     // natural residual (lcp.h) of the answer
 };
@@ -74,6 +76,12 @@ private:
                   SparseLcpResult& result);
     int source(const LcpProblem& problem, std::size_t i) const;
     bool sliding(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const;
+    // A row boxed on both sides by bounds of its own (a joint's friction, ±f·|λ_previous|), which
+    // the core always takes (sparse_core.cpp). Inline: asked of every row of every core.
+    bool fixedBox(const LcpProblem& problem, std::size_t i) const {
+        return problem.hi[i] < kLcpInfinity && problem.lo[i] > -kLcpInfinity && problem.lo[i] < problem.hi[i] &&
+               source(problem, i) < 0;
+    }
     void bounds(const LcpProblem& problem, std::span<const Real> x);
     void velocityChange(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                         std::span<const Real> x, std::span<const std::uint8_t> use);

@@ -12,6 +12,8 @@
 
 #include <Eigen/Dense>
 
+#include <cmath>
+
 namespace af {
 namespace {
 
@@ -293,6 +295,36 @@ TEST(SparseLcp, ShakenHumanoidWithLimitsAndJointFrictionMatchesTheDenseSolve) {
     EXPECT_GE(cores, 1);
     EXPECT_EQ(gaveUp, 0);
     EXPECT_LE(trials, 3 * 2 * steps) << "three trials per solve or fewer on average";
+}
+
+// Joint friction rows guessed at the wrong bound, as the jumps of their bounds (f·|λ| of the
+// joint's previous impulse) from step to step leave them: the trials find them wrong, and the
+// core takes all of them at once rather than a few per round, so one core round settles them,
+// with the dense answer.
+TEST(SparseLcp, JointFrictionRowsGuessedWrongAreSettledInOneCoreRound) {
+    TreeSolver tree;
+    const Scene scene = humanoidWithContacts(tree);
+    Dense dense;
+    solveDense(scene, false, dense);
+    ASSERT_EQ(dense.result.status, LcpStatus::Solved);
+    std::vector<LcpRowState> guess = dense.states;
+    int jointFriction = 0, wrongSide = 0;
+    for (std::size_t i = 0; i < scene.rows.size(); ++i) {
+        const ConstraintRow& r = scene.rows[i];
+        if (r.frictionSource >= 0 || !std::isfinite(r.lo) || !std::isfinite(r.hi) || !(r.lo < r.hi)) continue;
+        ++jointFriction;
+        if (dense.states[i] != LcpRowState::Free) ++wrongSide;
+        guess[i] = dense.states[i] == LcpRowState::AtUpper ? LcpRowState::AtLower : LcpRowState::AtUpper;
+    }
+    ASSERT_GE(jointFriction, 20);
+    EXPECT_GE(wrongSide, 3) << "rows sent to the other bound, not only sticking ones to a bound";
+    const SparseRun run = solveSparse(scene, false, guess);
+    expectSameAsDense(scene, false, run, "joint friction guessed at the wrong bound");
+    std::printf("sparse, joint friction guessed wrong: %d joint friction rows (%d at a bound), %d trials, core of %d "
+                "rows in %d rounds\n",
+                jointFriction, wrongSide, run.result.trials, run.result.coreRows, run.result.coreRounds);
+    EXPECT_GE(run.result.coreRows, jointFriction);
+    EXPECT_EQ(run.result.coreRounds, 1);
 }
 
 // Contacts that all arrive at once, pushing and sliding: the sparse solve is meant for guesses
