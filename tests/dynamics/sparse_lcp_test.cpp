@@ -414,6 +414,24 @@ TEST(SparseLcp, AnAnswerThatStillHoldsIsKeptWithoutFactorising) {
 // factorisation, sliding friction's coupling included: nothing is factorised, and the answer is
 // a fresh solve's. (The redundant contacts' impulses are fixed only by the CFM; a move of b
 // outside J's range would shift them along that near-null space, far and in any pattern.)
+// b = target − J v as it moves when every body's velocities move by up to 1e-9 at random.
+void nudgeVelocities(std::span<const ConstraintRow> rows, std::size_t bodies, std::mt19937& rng, std::vector<Real>& b) {
+    std::uniform_real_distribution<Real> u(-1, 1);
+    std::vector<Vec3> dv(bodies), dw(bodies);
+    for (std::size_t k = 0; k < bodies; ++k) {
+        dv[k] = 1e-9 * Vec3(u(rng), u(rng), u(rng));
+        dw[k] = 1e-9 * Vec3(u(rng), u(rng), u(rng));
+    }
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const ConstraintRow& r = rows[i];
+        const auto a = static_cast<std::size_t>(r.bodyA);
+        b[i] -= r.linearA.dot(dv[a]) + r.angularA.dot(dw[a]);
+        if (r.bodyB == kWorldBody) continue;
+        const auto c = static_cast<std::size_t>(r.bodyB);
+        b[i] -= r.linearB.dot(dv[c]) + r.angularB.dot(dw[c]);
+    }
+}
+
 TEST(SparseLcp, AGuessInTheLastAnswersPatternIsRefinedWithoutFactorising) {
     HumanoidSolves h;
     ASSERT_EQ(h.solve().status, LcpStatus::Solved);
@@ -426,21 +444,7 @@ TEST(SparseLcp, AGuessInTheLastAnswersPatternIsRefinedWithoutFactorising) {
 
     std::vector<Real> moved(h.problem.b.begin(), h.problem.b.end());
     std::mt19937 rng(7);
-    std::uniform_real_distribution<Real> u(-1, 1);
-    std::vector<Vec3> dv(h.scene.bodies.size()), dw(h.scene.bodies.size());
-    for (std::size_t k = 0; k < dv.size(); ++k) {
-        dv[k] = 1e-9 * Vec3(u(rng), u(rng), u(rng));
-        dw[k] = 1e-9 * Vec3(u(rng), u(rng), u(rng));
-    }
-    const std::span<const ConstraintRow> rows = h.in.rows.all();
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const ConstraintRow& r = rows[i];
-        const auto a = static_cast<std::size_t>(r.bodyA);
-        moved[i] -= r.linearA.dot(dv[a]) + r.angularA.dot(dw[a]);
-        if (r.bodyB == kWorldBody) continue;
-        const auto b = static_cast<std::size_t>(r.bodyB);
-        moved[i] -= r.linearB.dot(dv[b]) + r.angularB.dot(dw[b]);
-    }
+    nudgeVelocities(h.in.rows.all(), h.scene.bodies.size(), rng, moved);
     h.problem.b = moved;
     const SparseLcpResult refined = h.solve();
     ASSERT_EQ(refined.status, LcpStatus::Solved);
@@ -473,23 +477,9 @@ TEST(SparseLcp, StepAfterStepTheRefinedAnswersAreTheFreshOnes) {
     ASSERT_EQ(first.trials, 1);
     ASSERT_GT(first.couplingSolves, 0) << "some contacts slide";
     std::mt19937 rng(11);
-    std::uniform_real_distribution<Real> u(-1, 1);
-    const std::span<const ConstraintRow> rows = h.in.rows.all();
     std::vector<Real> b(h.problem.b.begin(), h.problem.b.end());
-    std::vector<Vec3> dv(h.scene.bodies.size()), dw(h.scene.bodies.size());
     for (int step = 0; step < 4; ++step) {
-        for (std::size_t k = 0; k < dv.size(); ++k) {  // the bodies' velocities moved by 1e-9
-            dv[k] = 1e-9 * Vec3(u(rng), u(rng), u(rng));
-            dw[k] = 1e-9 * Vec3(u(rng), u(rng), u(rng));
-        }
-        for (std::size_t i = 0; i < rows.size(); ++i) {
-            const ConstraintRow& r = rows[i];
-            const auto a = static_cast<std::size_t>(r.bodyA);
-            b[i] -= r.linearA.dot(dv[a]) + r.angularA.dot(dw[a]);
-            if (r.bodyB == kWorldBody) continue;
-            const auto c = static_cast<std::size_t>(r.bodyB);
-            b[i] -= r.linearB.dot(dv[c]) + r.angularB.dot(dw[c]);
-        }
+        nudgeVelocities(h.in.rows.all(), h.scene.bodies.size(), rng, b);
         h.problem.b = b;
         const SparseLcpResult refined = h.solve();
         ASSERT_EQ(refined.status, LcpStatus::Solved);
