@@ -72,9 +72,7 @@ void Island::writeRows(IslandContext& context, bool reuseRestRows) {
         rowInertia_ = restInertia_;
         restRowsHeld_ = false;
     } else {
-        rowInertia_ = system_.inverseInertiasWorld(bodies_);
-        for (const Joint& joint : joints_)
-            ranges_.push_back(writeJointRows(joint, bodies_, rowInertia_, context.settings.rows, rows_));
+        writeJointRowsOnly(context);
     }
     for (std::size_t k = 0; k < joints_.size(); ++k) {
         const JointRowRange& range = ranges_[k];

@@ -120,22 +120,13 @@ bool Island::bringBackClosingPoints(Real dt, const IslandContext& context) {
     const Real slop = context.settings.contact.slop;
     const std::size_t before = farPoints_.size();
     const auto closing = [&](const ContactPoint& p) {
-        Vec3 separation = Vec3::Zero(), velocity = Vec3::Zero();
-        if (const RigidBody* a = contact_detail::bodyOrNull(bodies_, p.bodyA)) {
-            const Vec3 onA = contact_detail::toWorld(a, p.localA);
-            separation += onA;
-            velocity += a->linearVelocity + a->angularVelocity.cross(onA - a->position);
-        } else {
-            separation += p.localA;
-        }
-        if (const RigidBody* b = contact_detail::bodyOrNull(bodies_, p.bodyB)) {
-            const Vec3 onB = contact_detail::toWorld(b, p.localB);
-            separation -= onB;
-            velocity -= b->linearVelocity + b->angularVelocity.cross(onB - b->position);
-        } else {
-            separation -= p.localB;
-        }
-        if (slop + p.normal.dot(separation + dt * velocity) >= 0) return false;
+        const RigidBody* a = contact_detail::bodyOrNull(bodies_, p.bodyA);
+        const RigidBody* b = contact_detail::bodyOrNull(bodies_, p.bodyB);
+        const Vec3 onA = contact_detail::toWorld(a, p.localA), onB = contact_detail::toWorld(b, p.localB);
+        Vec3 velocity = Vec3::Zero();
+        if (a) velocity += a->velocityAt(onA);
+        if (b) velocity -= b->velocityAt(onB);
+        if (slop + p.normal.dot(onA - onB + dt * velocity) >= 0) return false;
         nearPoints_.push_back(p);
         return true;
     };
