@@ -17,7 +17,7 @@ namespace {
 struct Options {
     af::sim::SceneOptions scene;
     af::sim::RunOptions run;
-    std::string solver = "exact";
+    std::string solver = "tree";
     std::vector<std::string> roots;
     std::string map;
     bool noMap = false;
