@@ -91,4 +91,9 @@ if si10 and ours:
     for r in ours:
         print(f"  {r['engine']} {r['variant']}: mean {r['us_per_step_mean'] / base:.2f}x, "
               f"median {r['us_per_step_median'] / median:.2f}x")
+print("\nmean µs/step until the figures rest, and from then on (rest_step as above):")
+for r in rows:
+    until, after = r.get("us_per_step_mean_until_rest"), r.get("us_per_step_mean_at_rest")
+    print(f"  {r['engine']} {r['variant']}: {num(until, '{:.1f}')} until step {num(r.get('rest_step'), '{}')}, "
+          f"{num(after, '{:.1f}')} after")
 PY

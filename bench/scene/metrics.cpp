@@ -191,6 +191,16 @@ std::string RunMetrics::json(std::string_view engine, std::string_view variant, 
     appendNumber(out, "us_per_step_mean", mean * 1e6);
     appendNumber(out, "us_per_step_median", median * 1e6);
     appendNumber(out, "us_per_step_max", max * 1e6);
+    // The mean before and after rest_step: where an engine's time goes (falling and settling, or
+    // holding a figure at rest), which the whole run's mean weighs by how soon the figure rests.
+    const std::size_t rest = static_cast<std::size_t>(restStep().value_or(static_cast<int>(n)));
+    const auto meanOf = [&](std::size_t begin, std::size_t end) {
+        double sum = 0;
+        for (std::size_t i = begin; i < end; ++i) sum += stepSeconds_[i];
+        return end > begin ? sum / static_cast<double>(end - begin) : NAN;
+    };
+    appendNumber(out, "us_per_step_mean_until_rest", meanOf(0, rest) * 1e6);
+    appendNumber(out, "us_per_step_mean_at_rest", meanOf(rest, n) * 1e6);
     appendNumber(out, "joint_err_max_m", jointErrMax_);
     appendNumber(out, "joint_err_final_m", any ? last_.jointErr : NAN);
     appendNumber(out, "joint_ang_err_max_rad", jointAngErrMax_);

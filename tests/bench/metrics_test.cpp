@@ -189,5 +189,26 @@ TEST(BenchMetrics, TimingStatistics) {
     EXPECT_NE(json.find("\"partial\": true"), std::string::npos) << json;
 }
 
+TEST(BenchMetrics, MeanTimeIsSplitAtTheRestStep) {
+    RunMetrics metrics(1);
+    auto moving = standingStill();
+    moving[3].w = Vec3(0, 0, 1);  // the head turning at 1 rad/s is not at rest
+    const auto still = standingStill();
+    metrics.addStep(moving, 30e-6, 0);
+    metrics.addStep(moving, 50e-6, 0);
+    for (int s = 0; s < 4; ++s) metrics.addStep(still, 2e-6, 0);
+    ASSERT_EQ(metrics.restStep(), 2);
+    const std::string json = metrics.json("af", "tree", "single", false);
+    EXPECT_NE(json.find("\"us_per_step_mean_until_rest\": 40,"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"us_per_step_mean_at_rest\": 2,"), std::string::npos) << json;
+
+    RunMetrics neverRests(1);
+    neverRests.addStep(moving, 4e-6, 0);
+    neverRests.addStep(moving, 6e-6, 0);
+    const std::string restless = neverRests.json("af", "tree", "single", false);
+    EXPECT_NE(restless.find("\"us_per_step_mean_until_rest\": 5,"), std::string::npos) << restless;
+    EXPECT_NE(restless.find("\"us_per_step_mean_at_rest\": null,"), std::string::npos) << restless;
+}
+
 }  // namespace
 }  // namespace benchscene
