@@ -81,6 +81,8 @@ private:
     LcpStatus solveVelocities(IslandContext& context);
     bool solveWithTree(IslandContext& context);
     bool solveSparse(const WarmStartCache& guess, IslandContext& context);
+    // v += M⁻¹Jᵀλ of the velocity solve's answer.
+    void applyImpulses();
     void statesFromImpulses(const IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
     // The velocity solve: rows written at the step's start, solved, impulses applied.
@@ -155,6 +157,7 @@ private:
     LcpExactSolver exactPosition_;
     TreeSolver tree_;
     SparseLcpSolver sparse_;
+    bool sparseAnswered_ = false;  // the sparse path found this velocity solve's answer
     LcpPgsSolver pgs_;
     RowPgs rowPgs_;
     ShakeCorrection shake_;

@@ -76,7 +76,7 @@ bool Island::solveVelocityRows(Real dt, IslandContext& context, bool reuseRestRo
         holdDespiteSoftness(row, previous);
     });
     const bool solved = solveVelocities(context) == LcpStatus::Solved;
-    system_.applyImpulses(rows_, bodies_);
+    applyImpulses();
     return solved;
 }
 
@@ -161,6 +161,7 @@ void Island::holdDespiteSoftness(ConstraintRow& r, Real previous) { r.target += 
 LcpStatus Island::solveVelocities(IslandContext& context) {
     std::span<Real> x = system_.solution();
     std::span<LcpRowState> states = system_.states();
+    sparseAnswered_ = false;
     if (large(context)) ++context.report.largeIslands;
     if (iterative(context)) {
         const LcpPgsResult r = rowPgs_.solve(rows_, system_, bodies_.size(), x, context.settings.pgs);
@@ -214,6 +215,7 @@ bool Island::solveSparse(const WarmStartCache& guess, IslandContext& context) {
         sparse_.solve(rows_.all(), system_.responses(), system_.problem(), bodies_, x, states, context.settings.exact);
     if (r.status == LcpStatus::Solved) {
         context.report.residual = std::max(context.report.residual, r.residual);
+        sparseAnswered_ = true;
         return true;
     }
     ++context.report.sparseFallbacks;

@@ -109,7 +109,11 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
                                        std::span<LcpRowState> states, const LcpExactSettings& settings) {
     SparseLcpResult result;
     const std::size_t n = rows.size();
-    if (n == 0) return result;
+    if (n == 0) {  // nothing to solve, and no velocity change
+        linear_.assign(bodies.size(), Vec3::Zero());
+        angular_.assign(bodies.size(), Vec3::Zero());
+        return result;
+    }
     if (!factor_.analyse(rows, bodies)) {
         refinable_ = false;
         result.status = LcpStatus::InvalidInput;

@@ -49,6 +49,12 @@ public:
     SparseLcpResult solve(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                           const LcpProblem& problem, std::span<const RigidBody> bodies, std::span<Real> x,
                           std::span<LcpRowState> states, const LcpExactSettings& settings);
+    // The bodies' velocity change M⁻¹Jᵀx of the answer of the last solve, when it succeeded:
+    // every answer is evaluated before it is accepted, which sums it row by row in the order and
+    // with the arithmetic of accumulateResponses (row_system.h), so bit for bit its sum (zero
+    // without rows).
+    std::span<const Vec3> answerLinearChange() const { return linear_; }
+    std::span<const Vec3> answerAngularChange() const { return angular_; }
 
 private:
     bool solvePattern(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,

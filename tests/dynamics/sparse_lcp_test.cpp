@@ -526,6 +526,39 @@ TEST(SparseLcp, AGuessOffItsBoundsIsPutBackOnThemAndRefined) {
     EXPECT_LE(worst, 1e-9 * largest);
 }
 
+// An island applies an answer through the velocity change the solver summed when it checked it:
+// bit for bit the sum of its impulses, whether a trial, the held guess or a refinement found it.
+TEST(SparseLcp, TheAnswersVelocityChangeIsTheSumOfItsImpulses) {
+    HumanoidSolves h;
+    const auto expectSum = [&](const char* path) {
+        std::vector<Vec3> linear(h.scene.bodies.size()), angular(h.scene.bodies.size());
+        accumulateResponses(h.in.rows.all(), h.in.responses, h.x, linear, angular);
+        const std::span<const Vec3> solverLinear = h.solver.answerLinearChange();
+        const std::span<const Vec3> solverAngular = h.solver.answerAngularChange();
+        EXPECT_TRUE(std::equal(linear.begin(), linear.end(), solverLinear.begin(), solverLinear.end())) << path;
+        EXPECT_TRUE(std::equal(angular.begin(), angular.end(), solverAngular.begin(), solverAngular.end())) << path;
+    };
+    ASSERT_EQ(h.solve().status, LcpStatus::Solved);
+    expectSum("first solve");
+    std::fill(h.x.begin(), h.x.end(), 0);  // solved again from its pattern alone: by one trial
+    ASSERT_EQ(h.solve().trials, 1);
+    expectSum("one trial");
+    ASSERT_EQ(h.solve().trials, 0);
+    expectSum("held guess");
+    std::vector<Real> moved(h.problem.b.begin(), h.problem.b.end());
+    std::mt19937 rng(3);
+    nudgeVelocities(h.in.rows.all(), h.scene.bodies.size(), rng, moved);
+    h.problem.b = moved;
+    ASSERT_TRUE(h.solve().refined);
+    expectSum("refined");
+    // No rows (a body in flight): nothing changes, whatever the last solve left.
+    ASSERT_EQ(h.solver.solve({}, {}, h.problem, h.scene.bodies, {}, {}, kSettings).status, LcpStatus::Solved);
+    for (const std::span<const Vec3> change : {h.solver.answerLinearChange(), h.solver.answerAngularChange()}) {
+        ASSERT_EQ(change.size(), h.scene.bodies.size());
+        for (const Vec3& v : change) EXPECT_EQ(v, Vec3::Zero());
+    }
+}
+
 TEST(SparseLcp, DependentRowsWithoutCfmAreRefused) {
     const std::vector<RigidBody> bodies = {RigidBody::dynamic(2, Mat3::Identity(), Vec3(0, 0, -5), Quat::Identity())};
     const ConstraintRows rows = dependentRows();
