@@ -77,6 +77,11 @@ public:
     void clear() { points_.clear(); }
     void add(const BodyContact& manifold, std::span<const RigidBody> bodies, std::span<const BodyMaterial> materials);
     void keep(std::span<const ContactPoint> points, std::span<const RigidBody> bodies);
+    // keep without taking the approach velocities anew (they stay as they were made): for points
+    // that only positions read (penetration, the position projection), never a velocity solve.
+    void keepForPositions(std::span<const ContactPoint> points) {
+        points_.insert(points_.end(), points.begin(), points.end());
+    }
     std::span<const ContactPoint> points() const { return points_; }
     std::size_t size() const { return points_.size(); }
 
