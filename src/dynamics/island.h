@@ -120,8 +120,14 @@ private:
     std::vector<Joint> joints_;
     std::vector<ContactPoint> points_;
     // The points the velocity solve writes rows for, and those it leaves out (see
-    // leaveOutFarPoints); writeRows takes nearPoints_ instead of points_ while nearPointsOnly_.
-    std::vector<ContactPoint> nearPoints_, farPoints_;
+    // leaveOutFarPoints) with where their pA and pB are, which the solves do not move;
+    // writeRows takes nearPoints_ instead of points_ while nearPointsOnly_.
+    struct FarPoint {
+        ContactPoint point;
+        Vec3 onA, onB;
+    };
+    std::vector<ContactPoint> nearPoints_;
+    std::vector<FarPoint> farPoints_;
     bool nearPointsOnly_ = false;
     std::vector<Vec3> linearBefore_, angularBefore_;
     std::span<const int> localOf_;

@@ -96,10 +96,12 @@ void Island::leaveOutFarPoints(Real dt, const IslandContext& context) {
     if (!restedLastStep_) return;
     const ContactSettings& contact = context.settings.contact;
     for (const ContactPoint& p : points_) {
-        const Real gap = contact.slop - currentDepth(p, bodies_);
+        const FarPoint at{p, contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyA), p.localA),
+                          contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyB), p.localB)};
+        const Real gap = contact.slop + p.normal.dot(at.onA - at.onB);  // slop − currentDepth, bit for bit
         const bool bounces = p.restitution > 0 && -p.approachVelocity > contact.restitutionThreshold;
         const bool far = !bounces && gap > kFarGap * contact.slop && gap + 2 * dt * std::min(p.approachVelocity, Real(0)) > 0;
-        (far ? farPoints_ : nearPoints_).push_back(p);
+        far ? farPoints_.push_back(at) : nearPoints_.push_back(p);
     }
     if (farPoints_.empty()) return;
     nearPointsOnly_ = true;
@@ -119,14 +121,14 @@ void Island::leaveOutFarPoints(Real dt, const IslandContext& context) {
 bool Island::bringBackClosingPoints(Real dt, const IslandContext& context) {
     const Real slop = context.settings.contact.slop;
     const std::size_t before = farPoints_.size();
-    const auto closing = [&](const ContactPoint& p) {
+    const auto closing = [&](const FarPoint& far) {
+        const ContactPoint& p = far.point;
         const RigidBody* a = contact_detail::bodyOrNull(bodies_, p.bodyA);
         const RigidBody* b = contact_detail::bodyOrNull(bodies_, p.bodyB);
-        const Vec3 onA = contact_detail::toWorld(a, p.localA), onB = contact_detail::toWorld(b, p.localB);
         Vec3 velocity = Vec3::Zero();
-        if (a) velocity += a->velocityAt(onA);
-        if (b) velocity -= b->velocityAt(onB);
-        if (slop + p.normal.dot(onA - onB + dt * velocity) >= 0) return false;
+        if (a) velocity += a->velocityAt(far.onA);
+        if (b) velocity -= b->velocityAt(far.onB);
+        if (slop + p.normal.dot(far.onA - far.onB + dt * velocity) >= 0) return false;
         nearPoints_.push_back(p);
         return true;
     };
