@@ -125,11 +125,18 @@ void integrateVelocity(RigidBody& body, const Vec3& gravity, Real dt, const Inte
         if (settings.gyroscopic) {
             const Mat3 r = body.rotation();
             const Vec3 omega = r.transpose() * body.angularVelocity;
-            const Vec3 torqueImpulse = dt * (r.transpose() * body.torque);
             // The torque acts as an impulse at the start of the step, the free motion follows:
             // the world angular momentum about the centre of mass changes by exactly dt·τ.
-            const Vec3 momentum = body.inertia * omega + torqueImpulse;
-            const Vec3 guess = omega + body.inverseInertia * torqueImpulse;
+            // Most bodies carry no torque (a ragdoll's, but for springs): adding a zero impulse
+            // changes nothing, and skipping it saved 0.8k of a resting bench ragdoll's 209k
+            // instructions per step.
+            Vec3 momentum = body.inertia * omega;
+            Vec3 guess = omega;
+            if (!body.torque.isZero(0)) {
+                const Vec3 torqueImpulse = dt * (r.transpose() * body.torque);
+                momentum += torqueImpulse;
+                guess += body.inverseInertia * torqueImpulse;
+            }
             body.angularVelocity = r * solveGyroscopic(body.inertia, momentum, guess, dt);
         } else {
             body.angularVelocity += dt * (body.inverseInertiaWorld() * body.torque);
