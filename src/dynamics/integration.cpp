@@ -132,12 +132,18 @@ void integrateVelocity(RigidBody& body, const Vec3& gravity, Real dt, const Inte
             // instructions per step.
             Vec3 momentum = body.inertia * omega;
             Vec3 guess = omega;
-            if (!body.torque.isZero(0)) {
+            const bool torqued = !body.torque.isZero(0);
+            if (torqued) {
                 const Vec3 torqueImpulse = dt * (r.transpose() * body.torque);
                 momentum += torqueImpulse;
                 guess += body.inverseInertia * torqueImpulse;
             }
-            body.angularVelocity = r * solveGyroscopic(body.inertia, momentum, guess, dt);
+            // Without torque the guess ω leaves the residual |Iω − exp(−dt[ω]×) Iω| ≤ dt|ω|·|Iω|
+            // (a turn by dt|ω| moves a vector by at most that fraction of it): within Newton's
+            // tolerance when dt|ω| is, and Newton keeps it. A resting bench ragdoll's slowest
+            // bodies: 2.4k of its 208k instructions per step not spent to find that out.
+            const bool guessStands = !torqued && dt * omega.norm() <= kNewtonTolerance;
+            body.angularVelocity = r * (guessStands ? omega : solveGyroscopic(body.inertia, momentum, guess, dt));
         } else {
             body.angularVelocity += dt * (body.inverseInertiaWorld() * body.torque);
         }

@@ -161,6 +161,23 @@ TEST(RigidBodyIntegration, SpinAboutATiltedPrincipalAxisKeepsOmegaToRounding) {
     }
 }
 
+// A body all but at rest (a resting ragdoll's limbs creep by 1e-14 rad/s) takes the implicit
+// gyroscopic step as a fast one does: on both sides of dt|ω| = 4ε, where the solve keeps its
+// guess without iterating, the body-frame ω' solves I ω' = exp(−dt[ω']×) I ω to rounding.
+TEST(RigidBodyIntegration, AnAlmostStillBodyTurnsAsTheImplicitStepSays) {
+    for (const Real turn : {1e-17, 5e-16, 9e-16, 2e-15, 1e-13}) {
+        RigidBody body = asymmetricBody();
+        body.angularVelocity = (turn / kDt) * Vec3(0.3, -0.8, 0.5).normalized();
+        const Mat3 r = body.rotation();
+        const Vec3 momentum = body.inertia * (r.transpose() * body.angularVelocity);
+        integrateVelocity(body, Vec3::Zero(), kDt, {});
+        const Vec3 omega = r.transpose() * body.angularVelocity;
+        const Vec3 turned = Quat(AngleAxis(-kDt * omega.norm(), omega.normalized())) * momentum;
+        EXPECT_LE((body.inertia * omega - turned).norm(), 8 * std::numeric_limits<Real>::epsilon() * momentum.norm())
+            << "dt|ω| = " << turn;
+    }
+}
+
 TEST(RigidBodyIntegration, TorqueChangesAngularMomentumByItsImpulse) {
     RigidBody body = asymmetricBody();
     body.linearVelocity.setZero();
