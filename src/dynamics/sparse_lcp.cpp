@@ -237,14 +237,22 @@ bool SparseLcpSolver::guessHolds(std::span<const ConstraintRow> rows, std::span<
                                  const LcpProblem& problem, std::span<const Real> x, std::span<const LcpRowState> states,
                                  Real wTolerance, Real tolerance) {
     evaluate(rows, responses, problem, x);
-    for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto holds = [&](std::size_t i) {
         const Real atBound = xTolerance(i, tolerance), gap = std::max(atBound, 2 * boundGap_);
-        const bool holds = states[i] == LcpRowState::Free
-                               ? std::abs(w_[i]) <= kHoldFraction * wTolerance && x[i] >= lo_[i] - atBound && x[i] <= hi_[i] + atBound
-                           : states[i] == LcpRowState::AtLower
-                               ? std::abs(x[i] - lo_[i]) <= gap && (lo_[i] == hi_[i] || w_[i] >= -wTolerance)
-                               : std::abs(x[i] - hi_[i]) <= gap && (lo_[i] == hi_[i] || w_[i] <= wTolerance);
-        if (!holds) return false;
+        return states[i] == LcpRowState::Free
+                   ? std::abs(w_[i]) <= kHoldFraction * wTolerance && x[i] >= lo_[i] - atBound && x[i] <= hi_[i] + atBound
+               : states[i] == LcpRowState::AtLower
+                   ? std::abs(x[i] - lo_[i]) <= gap && (lo_[i] == hi_[i] || w_[i] >= -wTolerance)
+                   : std::abs(x[i] - hi_[i]) <= gap && (lo_[i] == hi_[i] || w_[i] <= wTolerance);
+    };
+    // Whether every row holds does not depend on the order they are asked in. A resting figure's
+    // guess fails step after step at the same row, far down the list: asked first, it saves the
+    // bench ragdoll 1.2k of its 205k instructions per step.
+    if (lastMiss_ < rows.size() && !holds(lastMiss_)) return false;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (holds(i)) continue;
+        lastMiss_ = i;
+        return false;
     }
     return true;
 }
