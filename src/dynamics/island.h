@@ -152,7 +152,7 @@ private:
     };
     ConstraintRows restRows_;
     std::vector<JointRowRange> restRanges_;
-    std::vector<Mat3> restInertia_;
+    std::vector<Mat3> restInertia_, restRotations_;
     std::vector<RestPose> restPoses_;
     std::vector<Real> restImpulses_;
     JointRowSettings restSettings_;

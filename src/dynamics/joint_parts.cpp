@@ -25,19 +25,24 @@ namespace af::joint_detail {
 
 namespace {
 
-// Everything but the inertia, which is `inverseInertia` (every member set once: a side is made
-// twice for every joint every time its rows are written or measured).
-Side kinematicSide(int index, std::span<const RigidBody> bodies, const Mat3& inverseInertia = Mat3::Zero()) {
-    if (index == kWorldBody) return Side{};
-    const RigidBody& body = bodies[static_cast<std::size_t>(index)];
+// Every member set once: a side is made twice for every joint every time its rows are written or
+// measured.
+Side bodySide(int index, const RigidBody& body, const Mat3& rotation, const Mat3& inverseInertia) {
     return Side{index,
                 body.position,
                 body.orientation,
-                body.rotation(),
+                rotation,
                 body.linearVelocity,
                 body.angularVelocity,
                 body.inverseMass,
                 inverseInertia};
+}
+
+// Everything but the inertia, which is `inverseInertia`.
+Side kinematicSide(int index, std::span<const RigidBody> bodies, const Mat3& inverseInertia = Mat3::Zero()) {
+    if (index == kWorldBody) return Side{};
+    const RigidBody& body = bodies[static_cast<std::size_t>(index)];
+    return bodySide(index, body, body.rotation(), inverseInertia);
 }
 
 }  // namespace
@@ -54,12 +59,25 @@ Side sideOf(int index, std::span<const RigidBody> bodies, std::span<const Mat3> 
     return kinematicSide(index, bodies, inverseInertiaWorld[static_cast<std::size_t>(index)]);
 }
 
+Side sideOf(int index, std::span<const RigidBody> bodies, std::span<const Mat3> rotations,
+           std::span<const Mat3> inverseInertiaWorld) {
+    if (index == kWorldBody) return Side{};
+    const std::size_t i = static_cast<std::size_t>(index);
+    return bodySide(index, bodies[i], rotations[i], inverseInertiaWorld[i]);
+}
+
 Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies) {
     return {sideOf(joint.bodyA, bodies), sideOf(joint.bodyB, bodies)};
 }
 
 Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld) {
     return {sideOf(joint.bodyA, bodies, inverseInertiaWorld), sideOf(joint.bodyB, bodies, inverseInertiaWorld)};
+}
+
+Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> rotations,
+            std::span<const Mat3> inverseInertiaWorld) {
+    return {sideOf(joint.bodyA, bodies, rotations, inverseInertiaWorld),
+            sideOf(joint.bodyB, bodies, rotations, inverseInertiaWorld)};
 }
 
 Pair kinematicPairOf(const Joint& joint, std::span<const RigidBody> bodies) {

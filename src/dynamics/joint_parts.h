@@ -48,6 +48,9 @@ struct Side {
 Side sideOf(int index, std::span<const RigidBody> bodies);
 // The same with the body's world inverse inertia given (see writeJointRows).
 Side sideOf(int index, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld);
+// The same with the body's rotation() given too.
+Side sideOf(int index, std::span<const RigidBody> bodies, std::span<const Mat3> rotations,
+           std::span<const Mat3> inverseInertiaWorld);
 
 // The two bodies of a joint.
 struct Pair {
@@ -55,6 +58,8 @@ struct Pair {
 };
 Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies);
 Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> inverseInertiaWorld);
+Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> rotations,
+            std::span<const Mat3> inverseInertiaWorld);
 // Without the inertias (zero), for what reads only poses: the rows' errors.
 Pair kinematicPairOf(const Joint& joint, std::span<const RigidBody> bodies);
 

@@ -38,6 +38,12 @@ JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodi
     return writeRows(joint, pairOf(joint, bodies, inverseInertiaWorld), settings, out);
 }
 
+JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> rotations,
+                             std::span<const Mat3> inverseInertiaWorld, const JointRowSettings& settings,
+                             ConstraintRows& out) {
+    return writeRows(joint, pairOf(joint, bodies, rotations, inverseInertiaWorld), settings, out);
+}
+
 JointRowRange writeJointErrors(const Joint& joint, std::span<const RigidBody> bodies, const JointRowSettings& settings,
                                std::vector<RowError>& out) {
     return writeRows(joint, kinematicPairOf(joint, bodies), settings, out);

@@ -86,8 +86,9 @@ RigidBody RigidBody::dynamic(Real mass, const Mat3& inertia, const Vec3& positio
     return body;
 }
 
-Mat3 RigidBody::inverseInertiaWorld() const {
-    const Mat3 r = rotation();
+Mat3 RigidBody::inverseInertiaWorld() const { return inverseInertiaWorld(rotation()); }
+
+Mat3 RigidBody::inverseInertiaWorld(const Mat3& r) const {
     // Symmetrised so that solver matrices built from it stay exactly symmetric.
     return symmetricPart(r * inverseInertia * r.transpose());
 }

@@ -45,6 +45,8 @@ struct RigidBody {
 
     Mat3 rotation() const { return orientation.toRotationMatrix(); }
     Mat3 inverseInertiaWorld() const;
+    // The same with rotation() given, for a caller that needs both.
+    Mat3 inverseInertiaWorld(const Mat3& rotation) const;
     Mat3 inertiaWorld() const;
     Real mass() const { return inverseMass > 0 ? 1 / inverseMass : 0; }
     Vec3 velocityAt(const Vec3& worldPoint) const { return linearVelocity + angularVelocity.cross(worldPoint - position); }
