@@ -380,14 +380,15 @@ bool Island::putBackViolated() {
 // 4 / 8: 32 / 1 / 0 refusals, 181 / 152 / 137 projection passes, 403M / - / 386M
 // instructions, the limit crossed by 0.022 / 9e-11 / 6e-11 rad; 4 gained 0.1 J of energy.
 //
-// The second step reuses the first one's factors (one solve) and moves any drift the first
-// left, however small: that remainder, about 8e-11 m a step in the bench ragdoll's fall, piled
-// up past positionTolerance and sent every other step into a projection pass (~270k each).
+// The second step reuses the first one's factors (one solve) on the errors measured without
+// writing the rows (17k instructions against 35k for the bench ragdoll), and moves any drift
+// the first left, however small: that remainder, about 8e-11 m a step in the bench ragdoll's
+// fall, piled up past positionTolerance and sent every other step into a projection pass.
 // Its move is trusted no more than the first's: a 20-link chain whipping round (world test,
 // tree solver) once had a remainder below 1e-9 turned into a move that blew it apart.
 //
 // The drift is measured without writing the rows (a resting figure has none to close); they are
-// written only for SHAKE to move along. Returns whether it moved the bodies; if not, jointErrors_
+// written only for the first step's K. Returns whether it moved the bodies; if not, jointErrors_
 // are those of the current poses.
 //
 // rows_ and the responses in system_ are still those of the velocity solve: SHAKE captures them
@@ -399,8 +400,8 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
     beforeShake_.assign(bodies_.begin(), bodies_.end());
     writeJointRowsOnly(context);
     const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
-    writeJointRowsOnly(context);
-    const ShakeCorrection::Step second = shake_.apply(rows_, ranges_, bodies_, dt, 0);
+    measureJointErrors(context);
+    const ShakeCorrection::Step second = shake_.applyAgain(jointErrors_, errorRanges_, bodies_, dt);
     const bool wellConditioned = first.move <= kShakeTrust * first.drift + kShakeTolerance &&
                                  second.move <= kShakeTrust * second.drift + kShakeTolerance;
     const bool converging = second.drift <= 0.1 * first.drift + kShakeTolerance;

@@ -315,36 +315,44 @@ Real ShakeCorrection::drift(const ConstraintRows& start, const std::vector<Joint
     return worst;
 }
 
-ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
-                                             std::span<RigidBody> bodies, Real dt, Real closed) {
-    Step step;
+// drift_ from the errors now, errorOf(i) for row i of `ranges`; false when a captured limit row
+// is not there, or sameLimit(i, captured row) says it turns another way (a pyramid's other face
+// could have taken its place).
+template <class ErrorOf, class SameLimit>
+bool ShakeCorrection::measureDrift(const std::vector<JointRowRange>& ranges, ErrorOf errorOf, SameLimit sameLimit,
+                                   Step& step) {
     const std::size_t n = start_.size();
-    if (n == 0) return step;
     drift_.resize(n);
-    lambda_.resize(n);
     nowRow_.resize(n);
     std::size_t i = 0, group = 0;
     bool found = true;
     for (const JointRowRange& range : ranges) {
         if (range.equalityRows == 0) continue;
-        if (group == groups_.size()) return {kInfinity, kInfinity};
+        if (group == groups_.size()) {
+            step.drift = kInfinity;
+            return false;
+        }
         const std::size_t end = i + static_cast<std::size_t>(groups_[group++].size);
         for (; i < end; ++i) {
             const int r = offset_[i];
-            // A limit row of the start is the same limit now when it is there and turns the same way
-            // (a pyramid's other face could have taken its place).
             const bool there = r < range.equalityRows + range.limitRows;
             nowRow_[i] = static_cast<std::size_t>(range.first + (there ? r : 0));
-            const ConstraintRow& now = rows[nowRow_[i]];
-            if (r >= range.equalityRows && !(there && now.angularA.dot(start_[i].angularA) > 0)) found = false;
-            drift_[i] = now.error - start_[i].error;
+            if (r >= range.equalityRows && !(there && sameLimit(nowRow_[i], i))) found = false;
+            drift_[i] = errorOf(nowRow_[i]) - start_[i].error;
             step.drift = std::max(step.drift, std::abs(drift_[i]));
         }
     }
-    if (!found) {
-        step.move = kInfinity;
-        return step;
-    }
+    return found;
+}
+
+ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
+                                             std::span<RigidBody> bodies, Real dt, Real closed) {
+    Step step;
+    if (start_.empty()) return step;
+    const bool found = measureDrift(
+        ranges, [&](std::size_t r) { return rows[r].error; },
+        [&](std::size_t r, std::size_t c) { return rows[r].angularA.dot(start_[c].angularA) > 0; }, step);
+    if (!found) return {step.drift, kInfinity};
     if (step.drift <= closed) return step;
     // Later steps after a capture reuse the first one's factors (simplified Newton): the bodies
     // have moved since only by a correction the size of the drift, which changes K by as little.
@@ -358,11 +366,32 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
         }
         factorised_ = true;
     }
+    move(bodies, dt, step);
+    return step;
+}
+
+ShakeCorrection::Step ShakeCorrection::applyAgain(std::span<const RowError> errors, const std::vector<JointRowRange>& ranges,
+                                                  std::span<RigidBody> bodies, Real dt) {
+    Step step;
+    if (start_.empty()) return step;
+    if (!factorised_) return {kInfinity, kInfinity};
+    const bool found = measureDrift(
+        ranges, [&](std::size_t r) { return errors[r].error; }, [](std::size_t, std::size_t) { return true; }, step);
+    if (!found) return {step.drift, kInfinity};
+    if (step.drift > 0) move(bodies, dt, step);
+    return step;
+}
+
+// λ = −K⁻¹ drift_ with the factors of K; the bodies move by M⁻¹J₀ᵀλ and their velocities
+// change by the equality rows' share of it over dt.
+void ShakeCorrection::move(std::span<RigidBody> bodies, Real dt, Step& step) {
     if (singular_) {
         // No finite move closes this drift: report one too large to be kept.
         step.move = kInfinity;
-        return step;
+        return;
     }
+    const std::size_t n = start_.size();
+    lambda_.resize(n);
     for (std::size_t b = 0; b < blockCount_; ++b) {
         const Block& block = blocks_[b];
         y_.resize(static_cast<std::size_t>(block.size));
@@ -387,7 +416,6 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
         bodies[b].angularVelocity += (angular_[b] - limitAngular_[b]) / dt;
         step.move = std::max(step.move, linear_[b].norm() + angular_[b].norm() * gyrationRadius(bodies[b]));
     }
-    return step;
 }
 
 }  // namespace af

@@ -55,6 +55,14 @@ public:
     // nothing is moved and the move is reported as +∞, which no caller keeps.
     Step apply(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges, std::span<RigidBody> bodies,
                Real dt, Real closed);
+    // A later Newton step with the factors of K apply() left, on the errors measured at the moved
+    // poses (writeJointErrors, same joints) instead of written rows: it needs no Jacobian. Moves
+    // any drift that is not 0. A captured limit row counts as the same limit when the joint
+    // still has it (apply() checked its turn, and the bodies have moved since by that step's
+    // remainder). Without factors (no apply() since the capture, or one that moved nothing),
+    // reports +∞.
+    Step applyAgain(std::span<const RowError> errors, const std::vector<JointRowRange>& ranges, std::span<RigidBody> bodies,
+                    Real dt);
 
 private:
     // K = J₁ M⁻¹ J₀ᵀ couples two joints' rows only when the joints share a body. Eliminating the
@@ -82,6 +90,9 @@ private:
     void orderGroups(int bodies);
     bool simplicial(int group);
     void eliminate(int group);
+    template <class ErrorOf, class SameLimit>
+    bool measureDrift(const std::vector<JointRowRange>& ranges, ErrorOf errorOf, SameLimit sameLimit, Step& step);
+    void move(std::span<RigidBody> bodies, Real dt, Step& step);
     void fillBlock(const Block& block, const ConstraintRows& rows, std::vector<Real>& k) const;
     bool factorBlock(const Block& block, std::vector<Real>& k) const;
     void solveBlock(const Block& block, const std::vector<Real>& k, Real* y) const;
