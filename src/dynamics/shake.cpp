@@ -115,6 +115,16 @@ void ShakeCorrection::findStructure() {
         block.size += g.size;
         for (int r = 0; r < g.size; ++r) order_.push_back(g.first + r);
     }
+    laterRows_.clear();
+    for (Group& g : groups_) {
+        g.rowsBegin = static_cast<int>(laterRows_.size());
+        for (int r = 0; r < g.at.size; ++r) laterRows_.push_back(g.at.start + r);
+        for (int p = g.laterBegin; p < g.laterEnd; ++p) {
+            const Range& h = groups_[static_cast<std::size_t>(later_[static_cast<std::size_t>(p)])].at;
+            for (int r = 0; r < h.size; ++r) laterRows_.push_back(h.start + r);
+        }
+        g.rowsEnd = static_cast<int>(laterRows_.size());
+    }
 }
 
 // Elimination order over all groups (blocks never share a neighbour): simplicial groups (whose
@@ -215,15 +225,6 @@ void ShakeCorrection::eliminate(int group) {
     }
 }
 
-template <class F>
-void ShakeCorrection::forEachLater(const Group& g, int row, F&& f) const {
-    f(row + 1, g.at.start + g.at.size);
-    for (int p = g.laterBegin; p < g.laterEnd; ++p) {
-        const Range& h = groups_[static_cast<std::size_t>(later_[static_cast<std::size_t>(p)])].at;
-        f(h.start, h.start + h.size);
-    }
-}
-
 // K_pq: how row p's error moves per unit impulse along start row q, for every pair of rows the
 // factorisation reads (the fill's pairs, which share no body, get 0).
 void ShakeCorrection::fillBlock(const Block& block, const ConstraintRows& rows, std::vector<Real>& k) const {
@@ -257,23 +258,18 @@ bool ShakeCorrection::factorBlock(const Block& block, std::vector<Real>& k) cons
     const std::size_t n = static_cast<std::size_t>(block.size);
     for (int e = 0; e < block.groups; ++e) {
         const Group& g = groups_[static_cast<std::size_t>(eliminated_[static_cast<std::size_t>(block.firstGroup + e)])];
-        for (int row = g.at.start; row < g.at.start + g.at.size; ++row) {
-            const std::size_t r = static_cast<std::size_t>(row);
+        for (int t = 0; t < g.at.size; ++t) {
+            const std::size_t r = static_cast<std::size_t>(g.at.start + t);
             const Real pivot = k[r * n + r];
             if (!(std::abs(pivot) > 0) || !std::isfinite(pivot)) return false;
-            forEachLater(g, row, [&](int i0, int i1) {
-                for (std::size_t i = static_cast<std::size_t>(i0); i < static_cast<std::size_t>(i1); ++i) k[i * n + r] /= pivot;
-            });
-            forEachLater(g, row, [&](int i0, int i1) {
-                for (std::size_t i = static_cast<std::size_t>(i0); i < static_cast<std::size_t>(i1); ++i) {
-                    const Real l = k[i * n + r];
-                    if (l == 0) continue;
-                    forEachLater(g, row, [&](int j0, int j1) {
-                        for (std::size_t j = static_cast<std::size_t>(j0); j < static_cast<std::size_t>(j1); ++j)
-                            k[i * n + j] -= l * k[r * n + j];
-                    });
-                }
-            });
+            const std::span<const int> later = laterRowsOf(g, t);
+            const Real* pivotRow = &k[r * n];
+            for (const int i : later) {
+                Real* row = &k[static_cast<std::size_t>(i) * n];
+                const Real l = row[r] /= pivot;
+                if (l == 0) continue;
+                for (const int j : later) row[j] -= l * pivotRow[j];
+            }
         }
     }
     return true;
@@ -284,22 +280,19 @@ void ShakeCorrection::solveBlock(const Block& block, const std::vector<Real>& k,
     const std::size_t n = static_cast<std::size_t>(block.size);
     for (int e = 0; e < block.groups; ++e) {
         const Group& g = groups_[static_cast<std::size_t>(eliminated_[static_cast<std::size_t>(block.firstGroup + e)])];
-        for (int row = g.at.start; row < g.at.start + g.at.size; ++row) {
-            const std::size_t r = static_cast<std::size_t>(row);
-            forEachLater(g, row, [&](int i0, int i1) {
-                for (std::size_t i = static_cast<std::size_t>(i0); i < static_cast<std::size_t>(i1); ++i) y[i] -= k[i * n + r] * y[r];
-            });
+        for (int t = 0; t < g.at.size; ++t) {
+            const std::size_t r = static_cast<std::size_t>(g.at.start + t);
+            for (const int i : laterRowsOf(g, t)) y[i] -= k[static_cast<std::size_t>(i) * n + r] * y[r];
         }
     }
     for (int e = block.groups - 1; e >= 0; --e) {
         const Group& g = groups_[static_cast<std::size_t>(eliminated_[static_cast<std::size_t>(block.firstGroup + e)])];
-        for (int row = g.at.start + g.at.size - 1; row >= g.at.start; --row) {
-            const std::size_t r = static_cast<std::size_t>(row);
+        for (int t = g.at.size - 1; t >= 0; --t) {
+            const std::size_t r = static_cast<std::size_t>(g.at.start + t);
+            const Real* row = &k[r * n];
             Real sum = y[r];
-            forEachLater(g, row, [&](int j0, int j1) {
-                for (std::size_t j = static_cast<std::size_t>(j0); j < static_cast<std::size_t>(j1); ++j) sum -= k[r * n + j] * y[j];
-            });
-            y[r] = sum / k[r * n + r];
+            for (const int j : laterRowsOf(g, t)) sum -= row[j] * y[j];
+            y[r] = sum / row[r];
         }
     }
 }

@@ -80,6 +80,7 @@ private:
         int block = 0;
         Range at;                         // where its rows sit in its block
         int laterBegin = 0, laterEnd = 0;  // its neighbours when eliminated, in later_
+        int rowsBegin = 0, rowsEnd = 0;    // its rows, then those neighbours', in laterRows_
     };
     struct Block {
         int firstRow = 0, size = 0;      // positions in order_
@@ -96,10 +97,14 @@ private:
     void fillBlock(const Block& block, const ConstraintRows& rows, std::vector<Real>& k) const;
     bool factorBlock(const Block& block, std::vector<Real>& k) const;
     void solveBlock(const Block& block, const std::vector<Real>& k, Real* y) const;
-    // Calls f(range) for the rows that row `row` of group g couples to later in the order:
-    // the rest of its own rows, then its later neighbours' (first pass of the LU and the solve).
-    template <class F>
-    void forEachLater(const Group& g, int row, F&& f) const;
+    // The rows (places in g's block) that row t of group g couples to later in the order: the
+    // rest of its own rows, then its later neighbours' (the LU's and the solve's inner loops).
+    // One flat list per group, made with the order: the loops read the places from it instead
+    // of walking the neighbours' ranges (bench ragdoll: factorBlock 81k -> 57k instructions,
+    // solveBlock 22k -> 12k).
+    std::span<const int> laterRowsOf(const Group& g, int t) const {
+        return {laterRows_.data() + g.rowsBegin + t + 1, static_cast<std::size_t>(g.rowsEnd - g.rowsBegin - t - 1)};
+    }
 
     std::vector<ConstraintRow> start_;
     std::vector<int> offset_;  // per captured row: its place in its joint's range
@@ -108,6 +113,7 @@ private:
     std::vector<std::vector<int>> adjacent_;  // per group: groups sharing a body, and fill
     std::vector<int> eliminated_;        // groups in elimination order, grouped by block
     std::vector<int> later_;
+    std::vector<int> laterRows_;  // per group: see Group::rowsBegin
     std::vector<int> stamp_, parent_, blockOfRoot_, bodyGroups_, bodyGroupsBegin_, pending_;
     std::vector<char> done_;
     int stampValue_ = 0;
