@@ -8,13 +8,27 @@ namespace af {
 
 namespace {
 
-// J₁_i restricted to one body, applied to that body's move.
-Real along(const ConstraintRow& row, int body, const Vec3& linear, const Vec3& angular) {
-    if (body == kWorldBody) return 0;
-    Real v = 0;
-    if (row.bodyA == body) v += row.linearA.dot(linear) + row.angularA.dot(angular);
-    if (row.bodyB == body) v += row.linearB.dot(linear) + row.angularB.dot(angular);
-    return v;
+enum class Side { None, A, B };
+
+// Which side of a joint's rows (joining bodyA and bodyB) is on `body`: none for the world or a
+// body the joint does not join.
+Side sideOf(int bodyA, int bodyB, int body) {
+    if (body == kWorldBody) return Side::None;
+    return bodyA == body ? Side::A : bodyB == body ? Side::B : Side::None;
+}
+
+// A row's J₁ on one of its bodies.
+struct RowPart {
+    Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
+    Real along(const Vec3& moveLinear, const Vec3& moveAngular) const {
+        return linear.dot(moveLinear) + angular.dot(moveAngular);
+    }
+};
+
+RowPart partOf(const ConstraintRow& row, Side side) {
+    if (side == Side::A) return {row.linearA, row.angularA};
+    if (side == Side::B) return {row.linearB, row.angularB};
+    return {};
 }
 
 // A length for the body: the radius of gyration, √(trace I / 2m), so a turn can be compared
@@ -226,28 +240,36 @@ void ShakeCorrection::eliminate(int group) {
 }
 
 // K_pq: how row p's error moves per unit impulse along start row q, for every pair of rows the
-// factorisation reads (the fill's pairs, which share no body, get 0).
+// factorisation reads (the fill's pairs, which share no body, get 0). Every row of a joint joins
+// the joint's two bodies, so which side of p's rows meets each side of q's is found once per
+// pair of groups, and p's row is read once for all of q's (bench ragdoll, ~1060 entries: 66k ->
+// 51k instructions a fill, against matching bodies entry by entry).
 void ShakeCorrection::fillBlock(const Block& block, const ConstraintRows& rows, std::vector<Real>& k) const {
-    const int n = block.size;
-    const int* captured = order_.data() + block.firstRow;
-    auto fill = [&](const Range& p, const Range& q) {
-        for (int i = p.start; i < p.start + p.size; ++i) {
-            const ConstraintRow& now = rows[nowRow_[static_cast<std::size_t>(captured[i])]];
-            for (int j = q.start; j < q.start + q.size; ++j) {
-                const ConstraintRow& s = start_[static_cast<std::size_t>(captured[j])];
-                const RowResponse& m = responses_[static_cast<std::size_t>(captured[j])];
-                k[static_cast<std::size_t>(i * n + j)] =
-                    along(now, s.bodyA, m.linearA, m.angularA) + along(now, s.bodyB, m.linearB, m.angularB);
+    const std::size_t n = static_cast<std::size_t>(block.size);
+    auto fill = [&](const Group& p, const Group& q) {
+        const Side onA = sideOf(p.bodyA, p.bodyB, q.bodyA), onB = sideOf(p.bodyA, p.bodyB, q.bodyB);
+        for (int r = 0; r < p.size; ++r) {
+            const ConstraintRow& now = rows[nowRow_[static_cast<std::size_t>(p.first + r)]];
+            const RowPart a = partOf(now, onA), b = partOf(now, onB);
+            Real* out = &k[static_cast<std::size_t>(p.at.start + r) * n + static_cast<std::size_t>(q.at.start)];
+            const RowResponse* m = &responses_[static_cast<std::size_t>(q.first)];
+            for (int c = 0; c < q.size; ++c) {
+                if (onB == Side::None)
+                    out[c] = onA == Side::None ? 0 : a.along(m[c].linearA, m[c].angularA);
+                else if (onA == Side::None)
+                    out[c] = b.along(m[c].linearB, m[c].angularB);
+                else
+                    out[c] = a.along(m[c].linearA, m[c].angularA) + b.along(m[c].linearB, m[c].angularB);
             }
         }
     };
     for (int e = 0; e < block.groups; ++e) {
         const Group& g = groups_[static_cast<std::size_t>(eliminated_[static_cast<std::size_t>(block.firstGroup + e)])];
-        fill(g.at, g.at);
+        fill(g, g);
         for (int p = g.laterBegin; p < g.laterEnd; ++p) {
-            const Range& h = groups_[static_cast<std::size_t>(later_[static_cast<std::size_t>(p)])].at;
-            fill(g.at, h);
-            fill(h, g.at);
+            const Group& h = groups_[static_cast<std::size_t>(later_[static_cast<std::size_t>(p)])];
+            fill(g, h);
+            fill(h, g);
         }
     }
 }
