@@ -90,10 +90,12 @@ private:
     void leaveOutFarPoints(Real dt, const IslandContext& context);
     bool bringBackClosingPoints(Real dt, const IslandContext& context);
     bool closeDrift(Real dt, IslandContext& context);
+    bool captureDrift(const IslandContext& context);
     // The joints' rows alone at the bodies' poses, without keys: what SHAKE reads. rows_ is whole
     // again after the next writeRows.
     void writeJointRowsOnly(const IslandContext& context);
-    std::span<const char> limitsToHold();
+    std::span<const char> limitsToHold(const ConstraintRows& startRows, const std::vector<JointRowRange>& startRanges,
+                                       const std::vector<JointRowRange>& moved);
     // jointErrorsAtPoses: jointErrors_ are already measured at the bodies' current poses.
     void projectPositions(IslandContext& context, bool jointErrorsAtPoses);
     bool moveWhileImproving(Real& violation, IslandContext& context);
@@ -167,6 +169,11 @@ private:
     LcpPgsSolver pgs_;
     RowPgs rowPgs_;
     ShakeCorrection shake_;
+    bool driftedLastStep_ = false;  // SHAKE had a drift to close in the last step
+    // The velocity solve's rows, kept for SHAKE's capture while the joint rows are written at the
+    // moved poses (see closeDrift).
+    ConstraintRows startRows_;
+    std::vector<JointRowRange> startRanges_;
     std::vector<RigidBody> beforeShake_;
     std::vector<char> holdLimit_;  // see limitsToHold
     std::vector<RigidBody> beforeProjection_;

@@ -390,18 +390,11 @@ bool Island::putBackViolated() {
 // Its move is trusted no more than the first's: a 20-link chain whipping round (world test,
 // tree solver) once had a remainder below 1e-9 turned into a move that blew it apart.
 //
-// The drift is measured without writing the rows (a resting figure has none to close); they are
-// written only for the first step's K. Returns whether it moved the bodies; if not, jointErrors_
-// are those of the current poses.
-//
-// rows_ and the responses in system_ are still those of the velocity solve: SHAKE captures them
-// only when it has a drift to close.
+// Returns whether it moved the bodies; if not, jointErrors_ are those of the current poses.
 bool Island::closeDrift(Real dt, IslandContext& context) {
-    measureJointErrors(context);
-    if (ShakeCorrection::drift(rows_, ranges_, jointErrors_, errorRanges_) <= kShakeTolerance) return false;
-    shake_.capture(rows_, ranges_, system_, limitsToHold());
+    driftedLastStep_ = captureDrift(context);
+    if (!driftedLastStep_) return false;
     beforeShake_.assign(bodies_.begin(), bodies_.end());
-    writeJointRowsOnly(context);
     const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
     measureJointErrors(context);
     const ShakeCorrection::Step second = shake_.applyAgain(jointErrors_, errorRanges_, bodies_, dt);
@@ -412,6 +405,31 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
         std::copy(beforeShake_.begin(), beforeShake_.end(), bodies_.begin());
         ++context.report.shakeRefusals;
     }
+    return true;
+}
+
+// When the joints drifted since the velocity solve, captures its rows (rows_, responses in
+// system_) for SHAKE and writes the joint rows at the moved poses for its first step; otherwise
+// returns false with jointErrors_ measured at the poses. A resting figure has no drift: it is
+// measured without writing the rows. A figure that drifted in its last step most likely drifts
+// again: its rows are written at once and give the drift, the velocity solve's rows kept for the
+// capture meanwhile (measuring first cost 17k instructions a step more for the bench ragdoll).
+bool Island::captureDrift(const IslandContext& context) {
+    if (!driftedLastStep_) {
+        measureJointErrors(context);
+        if (ShakeCorrection::drift(rows_, ranges_, jointErrors_, errorRanges_) <= kShakeTolerance) return false;
+        shake_.capture(rows_, ranges_, system_, limitsToHold(rows_, ranges_, errorRanges_));
+        writeJointRowsOnly(context);
+        return true;
+    }
+    startRows_ = rows_;
+    startRanges_ = ranges_;
+    writeJointRowsOnly(context);
+    if (ShakeCorrection::drift(startRows_, startRanges_, rows_, ranges_) <= kShakeTolerance) {
+        measureJointErrors(context);
+        return false;
+    }
+    shake_.capture(startRows_, startRanges_, system_, limitsToHold(startRows_, startRanges_, ranges_));
     return true;
 }
 
@@ -430,12 +448,13 @@ void Island::writeJointRowsOnly(const IslandContext& context) {
 // the joint writes as many limit rows at the moved poses (capture checks that the rows it finds
 // there turn the same way). Holding only those the move took past min(C₀, 0) measured worse
 // (bench drop: 191 passes against 181; 16 ragdolls: 7e-4 J gained, ground 1.6 mm deep).
-std::span<const char> Island::limitsToHold() {
-    holdLimit_.assign(rows_.size(), 0);
+std::span<const char> Island::limitsToHold(const ConstraintRows& startRows, const std::vector<JointRowRange>& startRanges,
+                                            const std::vector<JointRowRange>& moved) {
+    holdLimit_.assign(startRows.size(), 0);
     const std::span<const Real> lambda = system_.solution();
-    for (std::size_t k = 0; k < ranges_.size(); ++k) {
-        const JointRowRange& start = ranges_[k];
-        if (errorRanges_[k].limitRows != start.limitRows) continue;
+    for (std::size_t k = 0; k < startRanges.size(); ++k) {
+        const JointRowRange& start = startRanges[k];
+        if (moved[k].limitRows != start.limitRows) continue;
         for (int r = start.equalityRows; r < start.equalityRows + start.limitRows; ++r) {
             const std::size_t i = static_cast<std::size_t>(start.first + r);
             holdLimit_[i] = lambda[i] > 0;

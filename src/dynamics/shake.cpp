@@ -319,15 +319,30 @@ void ShakeCorrection::solveBlock(const Block& block, const std::vector<Real>& k,
     }
 }
 
-Real ShakeCorrection::drift(const ConstraintRows& start, const std::vector<JointRowRange>& startRanges,
-                            std::span<const RowError> errors, const std::vector<JointRowRange>& ranges) {
+namespace {
+
+template <class Rows>
+Real equalityDrift(const ConstraintRows& start, const std::vector<JointRowRange>& startRanges, const Rows& now,
+                   const std::vector<JointRowRange>& ranges) {
     Real worst = 0;
     for (std::size_t k = 0; k < ranges.size(); ++k)
         for (int r = 0; r < ranges[k].equalityRows; ++r) {
-            const Real now = errors[static_cast<std::size_t>(ranges[k].first + r)].error;
-            worst = std::max(worst, std::abs(now - start[static_cast<std::size_t>(startRanges[k].first + r)].error));
+            const Real error = now[static_cast<std::size_t>(ranges[k].first + r)].error;
+            worst = std::max(worst, std::abs(error - start[static_cast<std::size_t>(startRanges[k].first + r)].error));
         }
     return worst;
+}
+
+}  // namespace
+
+Real ShakeCorrection::drift(const ConstraintRows& start, const std::vector<JointRowRange>& startRanges,
+                            std::span<const RowError> errors, const std::vector<JointRowRange>& ranges) {
+    return equalityDrift(start, startRanges, errors, ranges);
+}
+
+Real ShakeCorrection::drift(const ConstraintRows& start, const std::vector<JointRowRange>& startRanges,
+                            const ConstraintRows& rows, const std::vector<JointRowRange>& ranges) {
+    return equalityDrift(start, startRanges, rows, ranges);
 }
 
 // drift_ from the errors now, errorOf(i) for row i of `ranges`; false when a captured limit row

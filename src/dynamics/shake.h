@@ -45,6 +45,9 @@ public:
     // poses (writeJointErrors, same joints), as apply measures it after capture(start).
     static Real drift(const ConstraintRows& start, const std::vector<JointRowRange>& startRanges,
                       std::span<const RowError> errors, const std::vector<JointRowRange>& ranges);
+    // The same from rows written at the moved poses.
+    static Real drift(const ConstraintRows& start, const std::vector<JointRowRange>& startRanges,
+                      const ConstraintRows& rows, const std::vector<JointRowRange>& ranges);
 
     // With `rows` written at the moved poses (same joints, so the same equality rows in the
     // same order; a captured limit row must be there too, or nothing is moved and the move is
