@@ -1,0 +1,97 @@
+// SHAKE's part of an island's step (island_step.cpp): closing the drift the step's own motion
+// opened in the joints, see shake.h.
+
+#include "island.h"
+
+#include <algorithm>
+
+namespace af {
+
+namespace {
+
+constexpr Real kShakeTrust = 8;         // a SHAKE move may be at most this many times its drift
+constexpr Real kShakeTolerance = 1e-9;  // length units: drift this small counts as closed
+
+}  // namespace
+
+// Two Newton steps of SHAKE (shake.h) close the in-step drift, which is O(dt²) to begin with.
+// They are kept only when they behave like a correction: each move at most kShakeTrust times
+// the drift it closes, and the second step's drift a tenth of the first's.
+// Otherwise (a long chain whipping through a large turn in one step) the step keeps its
+// pre-SHAKE state and leaves the drift to the position-only pass, which can only remove energy.
+// A figure turning as one body moves its hands 2.5 times its largest drift (each joint of the
+// arm closes a share); with a trust of 2 the bench ragdoll's SHAKE was refused in every step
+// of its fall, and the projection then let limits be crossed by 0.022 rad. Bench drop with 2 /
+// 4 / 8: 32 / 1 / 0 refusals, 181 / 152 / 137 projection passes, 403M / - / 386M
+// instructions, the limit crossed by 0.022 / 9e-11 / 6e-11 rad; 4 gained 0.1 J of energy.
+//
+// The second step reuses the first one's factors (one solve) on the errors measured without
+// writing the rows (17k instructions against 35k for the bench ragdoll), and moves any drift
+// the first left, however small: that remainder, about 8e-11 m a step in the bench ragdoll's
+// fall, piled up past positionTolerance and sent every other step into a projection pass.
+// Its move is trusted no more than the first's: a 20-link chain whipping round (world test,
+// tree solver) once had a remainder below 1e-9 turned into a move that blew it apart.
+//
+// Returns whether it moved the bodies; if not, jointErrors_ are those of the current poses.
+bool Island::closeDrift(Real dt, IslandContext& context) {
+    driftedLastStep_ = captureDrift(context);
+    if (!driftedLastStep_) return false;
+    beforeShake_.assign(bodies_.begin(), bodies_.end());
+    const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
+    measureJointErrors(context);
+    const ShakeCorrection::Step second = shake_.applyAgain(jointErrors_, errorRanges_, bodies_, dt);
+    const bool wellConditioned = first.move <= kShakeTrust * first.drift + kShakeTolerance &&
+                                 second.move <= kShakeTrust * second.drift + kShakeTolerance;
+    const bool converging = second.drift <= 0.1 * first.drift + kShakeTolerance;
+    if (!wellConditioned || !converging) {
+        std::copy(beforeShake_.begin(), beforeShake_.end(), bodies_.begin());
+        ++context.report.shakeRefusals;
+    }
+    return true;
+}
+
+// When the joints drifted since the velocity solve, captures its rows (rows_, responses in
+// system_) for SHAKE and writes the joint rows at the moved poses for its first step; otherwise
+// returns false with jointErrors_ measured at the poses. A resting figure has no drift: it is
+// measured without writing the rows. A figure that drifted in its last step most likely drifts
+// again: its rows are written at once and give the drift, the velocity solve's rows kept for the
+// capture meanwhile (measuring first cost 17k instructions a step more for the bench ragdoll).
+bool Island::captureDrift(const IslandContext& context) {
+    if (!driftedLastStep_) {
+        measureJointErrors(context);
+        if (ShakeCorrection::drift(rows_, ranges_, jointErrors_, errorRanges_) <= kShakeTolerance) return false;
+        shake_.capture(rows_, ranges_, system_, limitsToHold(rows_, ranges_, errorRanges_));
+        writeJointRowsOnly(context);
+        return true;
+    }
+    startRows_ = rows_;
+    startRanges_ = ranges_;
+    writeJointRowsOnly(context);
+    if (ShakeCorrection::drift(startRows_, startRanges_, rows_, ranges_) <= kShakeTolerance) {
+        measureJointErrors(context);
+        return false;
+    }
+    shake_.capture(startRows_, startRanges_, system_, limitsToHold(startRows_, startRanges_, ranges_));
+    return true;
+}
+
+// Flags for ShakeCorrection::capture: the limit rows that push in the velocity solve (λ > 0), if
+// the joint writes as many limit rows at the moved poses (capture checks that the rows it finds
+// there turn the same way). Holding only those the move took past min(C₀, 0) measured worse
+// (bench drop: 191 passes against 181; 16 ragdolls: 7e-4 J gained, ground 1.6 mm deep).
+std::span<const char> Island::limitsToHold(const ConstraintRows& startRows, const std::vector<JointRowRange>& startRanges,
+                                            const std::vector<JointRowRange>& moved) {
+    holdLimit_.assign(startRows.size(), 0);
+    const std::span<const Real> lambda = system_.solution();
+    for (std::size_t k = 0; k < startRanges.size(); ++k) {
+        const JointRowRange& start = startRanges[k];
+        if (moved[k].limitRows != start.limitRows) continue;
+        for (int r = start.equalityRows; r < start.equalityRows + start.limitRows; ++r) {
+            const std::size_t i = static_cast<std::size_t>(start.first + r);
+            holdLimit_[i] = lambda[i] > 0;
+        }
+    }
+    return holdLimit_;
+}
+
+}  // namespace af
