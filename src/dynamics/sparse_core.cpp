@@ -43,8 +43,6 @@ namespace {
 // with cores up to 64 rows, 796M and 4 up to 96, 843M and 1 up to 128.
 constexpr std::size_t kMaxCore = 96;
 
-bool clampedState(LcpRowState s) { return s == LcpRowState::AtLower || s == LcpRowState::AtUpper; }
-
 }  // namespace
 
 int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
@@ -83,7 +81,7 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
             const int s = source(problem, i);
             if ((s >= 0) != (pass == 1)) continue;
             free_[i] = !inCore_[i] && states[i] == LcpRowState::Free ? 1 : 0;
-            use_[i] = !inCore_[i] && clampedState(states[i]) ? 1 : 0;
+            use_[i] = !inCore_[i] && clamped(states[i]) ? 1 : 0;
             if (inCore_[i]) x[i] = 0;
             if (!use_[i]) continue;
             const Real box = s >= 0 ? problem.mu[i] * std::abs(x[static_cast<std::size_t>(s)]) : 0;

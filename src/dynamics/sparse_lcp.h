@@ -80,8 +80,14 @@ private:
     int solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
                   std::span<Real> x, std::span<LcpRowState> states, Real wTolerance, const LcpExactSettings& settings,
                   SparseLcpResult& result);
-    int source(const LcpProblem& problem, std::size_t i) const;
-    bool sliding(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const;
+    // The small questions asked of every row, inline: the solver's three files (sparse_lcp.cpp,
+    // sparse_pattern.cpp, sparse_core.cpp) ask them in their inner loops.
+    static bool clamped(LcpRowState s) { return s == LcpRowState::AtLower || s == LcpRowState::AtUpper; }
+    int source(const LcpProblem& problem, std::size_t i) const { return problem.findex.empty() ? -1 : problem.findex[i]; }
+    bool sliding(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const {
+        const int s = source(problem, i);
+        return s >= 0 && clamped(states[i]) && states[static_cast<std::size_t>(s)] == LcpRowState::Free;
+    }
     // A row boxed on both sides by bounds of its own (a joint's friction, ±f·|λ_previous|), which
     // the core always takes (sparse_core.cpp). Inline: asked of every row of every core.
     bool fixedBox(const LcpProblem& problem, std::size_t i) const {
@@ -91,7 +97,17 @@ private:
     void bounds(const LcpProblem& problem, std::span<const Real> x);
     void velocityChange(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                         std::span<const Real> x, std::span<const std::uint8_t> use);
-    Real along(const ConstraintRow& row) const;
+    // J of the row times the velocity change held in linear_ and angular_ (inline, as above).
+    Real along(const ConstraintRow& r) const {
+        Real v = 0;
+        if (r.bodyA != kWorldBody)
+            v += r.linearA.dot(linear_[static_cast<std::size_t>(r.bodyA)]) +
+                 r.angularA.dot(angular_[static_cast<std::size_t>(r.bodyA)]);
+        if (r.bodyB != kWorldBody)
+            v += r.linearB.dot(linear_[static_cast<std::size_t>(r.bodyB)]) +
+                 r.angularB.dot(angular_[static_cast<std::size_t>(r.bodyB)]);
+        return v;
+    }
 
     SparseRowFactor factor_;
     Real boundGap_ = 0;  // of the last solved answer: its rows at a bound, how far off it
