@@ -99,6 +99,7 @@ private:
     // jointErrorsAtPoses: jointErrors_ are already measured at the bodies' current poses.
     void projectPositions(IslandContext& context, bool jointErrorsAtPoses);
     bool moveWhileImproving(Real& violation, IslandContext& context);
+    Real violationAtPoses(IslandContext& context);
     LcpStatus solvePositions();
     bool solvePositionsWithTree(IslandContext& context, Real violation);
     bool putBackViolated();
