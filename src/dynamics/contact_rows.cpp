@@ -57,27 +57,35 @@ Side sideOf(int index, std::span<const RigidBody> bodies, const Mat3& inverseIne
     return {&body, &inverseInertia, point - body.position};
 }
 
-// Appends the row along d, with its softness relative to its own J M⁻¹ Jᵀ. The reference
-// holds only until the next row is appended. Inlined into writeRows, so that the three rows of a
-// point share the loads of its bodies, lever arms and inertias (and no call costs a frame).
-[[gnu::always_inline]] inline ConstraintRow& addRowAlong(const ContactView& c, const Side& a, const Side& b, const Vec3& d, Real relativeCfm,
-                           ConstraintRows& out) {
-    ConstraintRow& row = out.append();
-    row.bodyA = c.bodyA;
-    row.bodyB = c.bodyB;
+// A contact row's members besides its Jacobian and softness.
+struct RowRest {
+    Real target = 0;
+    Real error = 0;
+    Real lo = -kInfinity;
+    Real hi = kInfinity;
+    int frictionSource = -1;
+    Real frictionCoefficient = 0;
+};
+
+// Appends the row along d, with its softness relative to its own J M⁻¹ Jᵀ, made in place with
+// each member written once. Inlined into writeRows, so that the three rows of a point share the
+// loads of its bodies, lever arms and inertias (and no call costs a frame).
+[[gnu::always_inline]] inline void addRowAlong(const ContactView& c, const Side& a, const Side& b, const Vec3& d,
+                                               Real relativeCfm, const RowRest& rest, ConstraintRows& out) {
+    Vec3 linearA = Vec3::Zero(), angularA = Vec3::Zero(), linearB = Vec3::Zero(), angularB = Vec3::Zero();
     Real diagonal = 0;
     if (a.body) {
-        row.linearA = d;
-        row.angularA = a.lever.cross(d);
-        diagonal += a.body->inverseMass * row.linearA.squaredNorm() + row.angularA.dot(*a.inverseInertia * row.angularA);
+        linearA = d;
+        angularA = a.lever.cross(d);
+        diagonal += a.body->inverseMass * linearA.squaredNorm() + angularA.dot(*a.inverseInertia * angularA);
     }
     if (b.body) {
-        row.linearB = -d;
-        row.angularB = -b.lever.cross(d);
-        diagonal += b.body->inverseMass * row.linearB.squaredNorm() + row.angularB.dot(*b.inverseInertia * row.angularB);
+        linearB = -d;
+        angularB = -b.lever.cross(d);
+        diagonal += b.body->inverseMass * linearB.squaredNorm() + angularB.dot(*b.inverseInertia * angularB);
     }
-    row.cfm = relativeCfm * diagonal;
-    return row;
+    out.appendMade(c.bodyA, c.bodyB, linearA, angularA, linearB, angularB, rest.target, rest.error, rest.lo, rest.hi,
+                   rest.frictionSource, rest.frictionCoefficient, relativeCfm * diagonal);
 }
 
 Real velocityAlong(const ContactView& c, const Side& a, const Side& b, const Vec3& d) {
@@ -95,12 +103,10 @@ Real velocityAlong(const ContactView& c, const Side& a, const Side& b, const Vec
     const Side b = sideOf(c.bodyB, bodies, inverseInertiaB, c.pointB);
     const int normalIndex = static_cast<int>(out.size());
     {
-        ConstraintRow& normal = addRowAlong(c, a, b, c.normal, settings.relativeCfm, out);
-        normal.lo = 0;
-        normal.hi = kInfinity;
-        normal.error = settings.slop - c.depth;
+        RowRest normal{.error = settings.slop - c.depth, .lo = 0};
         const Real approach = c.approachVelocity ? *c.approachVelocity : velocityAlong(c, a, b, c.normal);
         if (approach < -settings.restitutionThreshold) normal.target = -c.restitution * approach;
+        addRowAlong(c, a, b, c.normal, settings.relativeCfm, normal, out);
     }
 
     if (c.friction <= 0) return normalIndex;
@@ -118,11 +124,8 @@ Real velocityAlong(const ContactView& c, const Side& a, const Side& b, const Vec
     } else {
         tangents(c.normal, directions[0], directions[1]);
     }
-    for (int k = 0; k < count; ++k) {
-        ConstraintRow& row = addRowAlong(c, a, b, directions[k], settings.relativeCfm, out);
-        row.frictionSource = normalIndex;
-        row.frictionCoefficient = c.friction;
-    }
+    const RowRest friction{.frictionSource = normalIndex, .frictionCoefficient = c.friction};
+    for (int k = 0; k < count; ++k) addRowAlong(c, a, b, directions[k], settings.relativeCfm, friction, out);
     return normalIndex;
 }
 

@@ -85,23 +85,13 @@ Pair kinematicPairOf(const Joint& joint, std::span<const RigidBody> bodies) {
 }
 
 void addRow(const Pair& pair, const Jacobian& j, Real error, Real lo, Real hi, Real relativeCfm, ConstraintRows& out) {
-    ConstraintRow& row = out.append();
-    row.bodyA = pair.a.index;
-    row.bodyB = pair.b.index;
-    row.linearA = j.linearA;
-    row.angularA = j.angularA;
-    if (pair.b.index != kWorldBody) {
-        row.linearB = j.linearB;
-        row.angularB = j.angularB;
-    }
-    row.error = error;
-    row.lo = lo;
-    row.hi = hi;
-    const Real diagonal = pair.a.inverseMass * row.linearA.squaredNorm() +
-                          row.angularA.dot(pair.a.inverseInertia * row.angularA) +
-                          pair.b.inverseMass * row.linearB.squaredNorm() +
-                          row.angularB.dot(pair.b.inverseInertia * row.angularB);
-    row.cfm = relativeCfm * diagonal;
+    const bool againstWorld = pair.b.index == kWorldBody;
+    const Vec3 linearB = againstWorld ? Vec3::Zero() : j.linearB;
+    const Vec3 angularB = againstWorld ? Vec3::Zero() : j.angularB;
+    const Real diagonal = pair.a.inverseMass * j.linearA.squaredNorm() + j.angularA.dot(pair.a.inverseInertia * j.angularA) +
+                          pair.b.inverseMass * linearB.squaredNorm() + angularB.dot(pair.b.inverseInertia * angularB);
+    out.appendMade(pair.a.index, pair.b.index, j.linearA, j.angularA, linearB, angularB, Real(0), error, lo, hi, -1,
+                   Real(0), relativeCfm * diagonal);
 }
 
 Vec3 perpendicular(const Vec3& v) {

@@ -16,6 +16,7 @@
 #include "af/geometry/math.h"
 
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace af {
@@ -48,9 +49,13 @@ public:
         rows_.push_back(row);
         return static_cast<int>(rows_.size()) - 1;
     }
-    // Appends a default row to be written in place (no temporary to copy); the reference holds
-    // until the next append or add. Its index is size() − 1.
-    ConstraintRow& append() { return rows_.emplace_back(); }
+    // Appends a row made in place from all of its members, in ConstraintRow's order: each is
+    // written once (no temporary to copy, no default row zeroed first: a default row cost ~20 of
+    // the ~155 instructions of appending a joint row). Its index is size() − 1.
+    template <class... Members>
+    void appendMade(Members&&... members) {
+        rows_.emplace_back(std::forward<Members>(members)...);
+    }
     std::size_t size() const { return rows_.size(); }
     ConstraintRow& operator[](std::size_t i) { return rows_[i]; }
     const ConstraintRow& operator[](std::size_t i) const { return rows_[i]; }
