@@ -31,23 +31,27 @@ namespace {
 
 constexpr Real kPi = std::numbers::pi_v<Real>;
 
+// x = rA·tB and y = rA·rB: φ = atan2(x, y).
 struct AngleState {
-    Real angle = 0;
-    Vec3 gradient = Vec3::Zero();
+    Vec3 rA, rB, tB;
+    Real x = 0, y = 0;
+
+    Real angle() const { return std::atan2(x, y); }
+    // g, dφ/dt = (ωA − ωB)·g; made only for a row that is written. rA ∥ hB: the angle is
+    // undefined; the axis rows are far off then and the limit waits.
+    Vec3 gradient() const {
+        const Real r2 = x * x + y * y;
+        return r2 > Real(1e-18) ? Vec3(rA.cross(y * tB - x * rB) / r2) : Vec3::Zero();
+    }
 };
 
 AngleState angleState(const Joint& joint, const Pair& pair) {
-    const Vec3 hB = pair.b.direction(joint.axisB);
-    const Vec3 rA = pair.a.direction(joint.referenceA);
-    const Vec3 rB = pair.b.direction(joint.referenceB);
-    const Vec3 tB = hB.cross(rB);
-    const Real x = rA.dot(tB);
-    const Real y = rA.dot(rB);
-    const Real r2 = x * x + y * y;
     AngleState s;
-    s.angle = std::atan2(x, y);
-    // rA ∥ hB: the angle is undefined; the axis rows are far off then and the limit waits.
-    if (r2 > Real(1e-18)) s.gradient = rA.cross(y * tB - x * rB) / r2;
+    s.rA = pair.a.direction(joint.referenceA);
+    s.rB = pair.b.direction(joint.referenceB);
+    s.tB = pair.b.direction(joint.axisB).cross(s.rB);
+    s.x = s.rA.dot(s.tB);
+    s.y = s.rA.dot(s.rB);
     return s;
 }
 
@@ -69,10 +73,10 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
 
     if (joint.limit != LimitType::None && joint.hinge.halfWidth < kPi) {
         const AngleState s = angleState(joint, pair);
-        const Real d = wrapAngle(s.angle - joint.hinge.center);
+        const Real d = wrapAngle(s.angle() - joint.hinge.center);
         const Real c = joint.hinge.halfWidth - std::fabs(d);
         if (c < settings.limitMargin) {
-            const Vec3 g = (d < 0 ? 1 : -1) * s.gradient;
+            const Vec3 g = (d < 0 ? 1 : -1) * s.gradient();
             addRow(pair, [&] { return Jacobian{Vec3::Zero(), g, Vec3::Zero(), -g}; }, c, 0, kInfinity, settings.limitCfm,
                    out);
             range.limitRows = 1;
@@ -85,11 +89,11 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
     return range;
 }
 
-Real hingeAngleOf(const Joint& joint, const Pair& pair) { return angleState(joint, pair).angle; }
+Real hingeAngleOf(const Joint& joint, const Pair& pair) { return angleState(joint, pair).angle(); }
 
 Real hingeLimitViolation(const Joint& joint, const Pair& pair) {
     if (joint.limit == LimitType::None) return 0;
-    const Real d = wrapAngle(angleState(joint, pair).angle - joint.hinge.center);
+    const Real d = wrapAngle(angleState(joint, pair).angle() - joint.hinge.center);
     return std::max(Real(0), std::fabs(d) - joint.hinge.halfWidth);
 }
 

@@ -30,36 +30,43 @@ namespace {
 
 constexpr Real kPi = std::numbers::pi_v<Real>;
 
+// θ = atan2(|b × k|, b·k); the row's normal is made only for a row that is written.
 struct ConeState {
-    Real angle = 0;  // θ
-    Vec3 normal = Vec3::Zero();
+    Vec3 cross = Vec3::Zero();  // b × k
+    Real sine = 0;              // |b × k|
+    Real angle = 0;             // θ
+
+    // At θ = 0 or π the plane of turning is undefined; any normal of the axis will do.
+    Vec3 normal(const Vec3& axis) const { return sine > Real(1e-12) ? Vec3(cross / sine) : perpendicular(axis); }
 };
 
 ConeState coneState(const Vec3& shaft, const Vec3& axis) {
-    const Vec3 cross = shaft.cross(axis);
-    const Real sine = cross.norm();
     ConeState s;
-    s.angle = std::atan2(sine, shaft.dot(axis));
-    // At θ = 0 or π the plane of turning is undefined; any normal of the axis will do.
-    s.normal = sine > Real(1e-12) ? Vec3(cross / sine) : perpendicular(axis);
+    s.cross = shaft.cross(axis);
+    s.sine = s.cross.norm();
+    s.angle = std::atan2(s.sine, shaft.dot(axis));
     return s;
 }
 
 struct FaceState {
-    Real angle = 0;  // ψ_i
-    Vec3 gradient = Vec3::Zero();  // g: dψ/dt = (ωA − ωB)·g
-    bool defined = false;          // false when b is ⟂ the face's plane
+    Real x = 0, z = 0, r2 = 0;  // x = b·e_i, z = b·e2, r2 = x² + z²
+    Real angle = 0;             // ψ_i
+    bool defined = false;       // false when b is ⟂ the face's plane
+
+    // g: dψ/dt = (ωA − ωB)·g, made only for a row that is written.
+    Vec3 gradient(const Vec3& shaft, const Vec3& side, const Vec3& axis) const {
+        return shaft.cross(z * side - x * axis) / r2;
+    }
 };
 
 FaceState faceState(const Vec3& shaft, const Vec3& side, const Vec3& axis) {
-    const Real x = shaft.dot(side);
-    const Real z = shaft.dot(axis);
-    const Real r2 = x * x + z * z;
     FaceState s;
-    if (r2 < Real(1e-18)) return s;
+    s.x = shaft.dot(side);
+    s.z = shaft.dot(axis);
+    s.r2 = s.x * s.x + s.z * s.z;
+    if (s.r2 < Real(1e-18)) return s;
     s.defined = true;
-    s.angle = std::atan2(x, z);
-    s.gradient = shaft.cross(z * side - x * axis) / r2;
+    s.angle = std::atan2(s.x, s.z);
     return s;
 }
 
@@ -75,10 +82,11 @@ int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSett
     int written = 0;
     if (joint.limit == LimitType::Cone) {
         if (joint.cone.halfAngle >= kPi) return 0;
-        const ConeState s = coneState(shaft, pair.b.direction(joint.cone.axis));
+        const Vec3 axis = pair.b.direction(joint.cone.axis);
+        const ConeState s = coneState(shaft, axis);
         const Real c = joint.cone.halfAngle - s.angle;
         if (c < settings.limitMargin) {
-            writeAngleLimitRow(pair, c, s.normal, settings.limitCfm, out);
+            writeAngleLimitRow(pair, c, s.normal(axis), settings.limitCfm, out);
             ++written;
         }
     } else if (joint.limit == LimitType::Pyramid) {
@@ -90,7 +98,7 @@ int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSett
             const Real c = joint.pyramid.halfAngles[i] - std::fabs(s.angle);
             if (c >= settings.limitMargin) continue;
             const Real sign = s.angle < 0 ? -1 : 1;
-            writeAngleLimitRow(pair, c, -sign * s.gradient, settings.limitCfm, out);
+            writeAngleLimitRow(pair, c, -sign * s.gradient(shaft, basis.col(i), basis.col(2)), settings.limitCfm, out);
             ++written;
         }
     }

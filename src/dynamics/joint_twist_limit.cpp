@@ -29,20 +29,25 @@ Vec3 alongShortestArc(const Vec3& from, const Vec3& to, const Vec3& v) {
 }
 
 struct TwistState {
+    Vec3 b, c;  // A's shaft and B's axis
     Real angle = 0;
-    Vec3 rate = Vec3::Zero();  // k: dθ/dt = (ωA − ωB)·k
+
+    // k: dθ/dt = (ωA − ωB)·k, made only for a row that is written.
+    Vec3 rate() const { return (b + c) / std::max(Real(1e-9), 1 + b.dot(c)); }
 };
 
 TwistState twistState(const Joint& joint, const Pair& pair) {
-    const Vec3 b = pair.a.direction(joint.limitShaft).normalized();
-    const Vec3 c = pair.b.direction(joint.twistAxisB);
-    const Vec3 swungBack = alongShortestArc(b, c, pair.a.direction(joint.twistReferenceA));
-    const Vec3 reference = pair.b.direction(joint.twistReferenceB);
     TwistState s;
-    s.angle = std::atan2(reference.cross(swungBack).dot(c), reference.dot(swungBack));
-    s.rate = (b + c) / std::max(Real(1e-9), 1 + b.dot(c));
+    s.b = pair.a.direction(joint.limitShaft).normalized();
+    s.c = pair.b.direction(joint.twistAxisB);
+    const Vec3 swungBack = alongShortestArc(s.b, s.c, pair.a.direction(joint.twistReferenceA));
+    const Vec3 reference = pair.b.direction(joint.twistReferenceB);
+    s.angle = std::atan2(reference.cross(swungBack).dot(s.c), reference.dot(swungBack));
     return s;
 }
+
+// J = [0 │ g │ 0 │ −g].
+Jacobian angularJacobian(const Vec3& g) { return {Vec3::Zero(), g, Vec3::Zero(), -g}; }
 
 bool limited(const Joint& joint) { return joint.twistHalfAngle > 0 && joint.twistHalfAngle < kPi; }
 
@@ -54,14 +59,12 @@ int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSett
     int written = 0;
     const Real upper = joint.twistHalfAngle - s.angle;
     if (upper < settings.limitMargin) {
-        addRow(pair, [&] { return Jacobian{Vec3::Zero(), -s.rate, Vec3::Zero(), s.rate}; }, upper, 0, kInfinity,
-               settings.limitCfm, out);
+        addRow(pair, [&] { return angularJacobian(-s.rate()); }, upper, 0, kInfinity, settings.limitCfm, out);
         ++written;
     }
     const Real lower = joint.twistHalfAngle + s.angle;
     if (lower < settings.limitMargin) {
-        addRow(pair, [&] { return Jacobian{Vec3::Zero(), s.rate, Vec3::Zero(), -s.rate}; }, lower, 0, kInfinity,
-               settings.limitCfm, out);
+        addRow(pair, [&] { return angularJacobian(s.rate()); }, lower, 0, kInfinity, settings.limitCfm, out);
         ++written;
     }
     return written;
