@@ -108,6 +108,9 @@ Vec3 perpendicular(const Vec3& v) {
 
 Real wrapAngle(Real angle) {
     constexpr Real pi = std::numbers::pi_v<Real>;
+    // Most angles are inside already (a hinge's angle from atan2 less a centre), where remainder
+    // would return them unchanged: its libm call is made only for the others.
+    if (angle > -pi && angle <= pi) return angle;
     angle = std::remainder(angle, 2 * pi);  // into [−π, π]
     return angle <= -pi ? angle + 2 * pi : angle;
 }
