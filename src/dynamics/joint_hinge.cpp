@@ -73,9 +73,13 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
 
     if (joint.limit != LimitType::None && joint.hinge.halfWidth < kPi) {
         const AngleState s = angleState(joint, pair);
-        const Real d = wrapAngle(s.angle() - joint.hinge.center);
+        // Most writes find the hinge far inside its V and need no exact angle (atan2 and wrap:
+        // 0.4M of the bench drop's 273M instructions).
+        const bool far = surelyInside(wrapAngle(roughAtan2(s.x, s.y) - joint.hinge.center),
+                                      joint.hinge.halfWidth - settings.limitMargin);
+        const Real d = far ? 0 : wrapAngle(s.angle() - joint.hinge.center);
         const Real c = joint.hinge.halfWidth - std::fabs(d);
-        if (c < settings.limitMargin) {
+        if (!far && c < settings.limitMargin) {
             const Vec3 g = (d < 0 ? 1 : -1) * s.gradient();
             addRow(pair, [&] { return Jacobian{Vec3::Zero(), g, Vec3::Zero(), -g}; }, c, 0, kInfinity, settings.limitCfm,
                    out);

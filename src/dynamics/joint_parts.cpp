@@ -21,6 +21,8 @@
 
 #include "joint_parts.h"
 
+#include <algorithm>
+
 namespace af::joint_detail {
 
 namespace {
@@ -113,6 +115,20 @@ Real wrapAngle(Real angle) {
     if (angle > -pi && angle <= pi) return angle;
     angle = std::remainder(angle, 2 * pi);  // into [−π, π]
     return angle <= -pi ? angle + 2 * pi : angle;
+}
+
+Real roughAtan2(Real y, Real x) {
+    constexpr Real pi = std::numbers::pi_v<Real>;
+    const Real ax = std::fabs(x);
+    const Real ay = std::fabs(y);
+    const Real larger = std::max(ax, ay);
+    if (larger == 0) return std::atan2(y, x);  // 0 or ±π, by the signs of the zeros
+    const Real t = std::min(ax, ay) / larger;
+    const Real t2 = t * t;
+    Real a = t * (0.9998660 + t2 * (-0.3302995 + t2 * (0.1801410 + t2 * (-0.0851330 + t2 * 0.0208351))));
+    if (ay > ax) a = pi / 2 - a;
+    if (x < 0) a = pi - a;
+    return std::signbit(y) ? -a : a;
 }
 
 void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Real relativeCfm, RowOut out) {

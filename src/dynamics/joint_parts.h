@@ -87,6 +87,13 @@ void addRow(const Pair& pair, JacobianOf&& jacobianOf, Real error, Real lo, Real
 Vec3 perpendicular(const Vec3& v);
 // Angle wrapped into (−π, π].
 Real wrapAngle(Real angle);
+// atan2(y, x) within 1.2e-5 rad, for telling a joint far from its limit at ~25 instructions
+// against libm's ~130; a row is always written with the exact angle. The octant's arctangent by
+// Abramowitz & Stegun 4.4.49 (largest error 1.15e-5 measured over [0, 1] in 2M samples).
+Real roughAtan2(Real y, Real x);
+// Whether a limit row written when |angle| > bound (bound = limit − margin) is surely not
+// written, from the rough angle: 1e-4 rad leaves room for its error and every rounding.
+inline bool surelyInside(Real roughAngle, Real bound) { return std::fabs(roughAngle) < bound - Real(1e-4); }
 inline Real degrees(Real radians) { return radians * (180 / std::numbers::pi_v<Real>); }
 inline Real radians(Real degrees) { return degrees * (std::numbers::pi_v<Real> / 180); }
 

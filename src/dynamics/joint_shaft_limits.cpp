@@ -30,12 +30,14 @@ namespace {
 
 constexpr Real kPi = std::numbers::pi_v<Real>;
 
-// θ = atan2(|b × k|, b·k); the row's normal is made only for a row that is written.
+// θ = atan2(|b × k|, b·k), made (as the row's normal) only when a row may be written.
 struct ConeState {
     Vec3 cross = Vec3::Zero();  // b × k
     Real sine = 0;              // |b × k|
-    Real angle = 0;             // θ
+    Real cosine = 0;            // b·k
 
+    Real angle() const { return std::atan2(sine, cosine); }
+    Real roughAngle() const { return roughAtan2(sine, cosine); }
     // At θ = 0 or π the plane of turning is undefined; any normal of the axis will do.
     Vec3 normal(const Vec3& axis) const { return sine > Real(1e-12) ? Vec3(cross / sine) : perpendicular(axis); }
 };
@@ -44,16 +46,18 @@ ConeState coneState(const Vec3& shaft, const Vec3& axis) {
     ConeState s;
     s.cross = shaft.cross(axis);
     s.sine = s.cross.norm();
-    s.angle = std::atan2(s.sine, shaft.dot(axis));
+    s.cosine = shaft.dot(axis);
     return s;
 }
 
+// ψ_i = atan2(x, z), made (as its gradient) only when a row may be written.
 struct FaceState {
     Real x = 0, z = 0, r2 = 0;  // x = b·e_i, z = b·e2, r2 = x² + z²
-    Real angle = 0;             // ψ_i
     bool defined = false;       // false when b is ⟂ the face's plane
 
-    // g: dψ/dt = (ωA − ωB)·g, made only for a row that is written.
+    Real angle() const { return std::atan2(x, z); }
+    Real roughAngle() const { return roughAtan2(x, z); }
+    // g: dψ/dt = (ωA − ωB)·g.
     Vec3 gradient(const Vec3& shaft, const Vec3& side, const Vec3& axis) const {
         return shaft.cross(z * side - x * axis) / r2;
     }
@@ -64,9 +68,7 @@ FaceState faceState(const Vec3& shaft, const Vec3& side, const Vec3& axis) {
     s.x = shaft.dot(side);
     s.z = shaft.dot(axis);
     s.r2 = s.x * s.x + s.z * s.z;
-    if (s.r2 < Real(1e-18)) return s;
-    s.defined = true;
-    s.angle = std::atan2(s.x, s.z);
+    s.defined = s.r2 >= Real(1e-18);
     return s;
 }
 
@@ -84,7 +86,9 @@ int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSett
         if (joint.cone.halfAngle >= kPi) return 0;
         const Vec3 axis = pair.b.direction(joint.cone.axis);
         const ConeState s = coneState(shaft, axis);
-        const Real c = joint.cone.halfAngle - s.angle;
+        // Most writes find the shaft far inside its cone and need no exact angle.
+        if (surelyInside(s.roughAngle(), joint.cone.halfAngle - settings.limitMargin)) return 0;
+        const Real c = joint.cone.halfAngle - s.angle();
         if (c < settings.limitMargin) {
             writeAngleLimitRow(pair, c, s.normal(axis), settings.limitCfm, out);
             ++written;
@@ -94,10 +98,11 @@ int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSett
         for (int i = 0; i < 2; ++i) {
             if (joint.pyramid.halfAngles[i] >= kPi) continue;
             const FaceState s = faceState(shaft, basis.col(i), basis.col(2));
-            if (!s.defined) continue;
-            const Real c = joint.pyramid.halfAngles[i] - std::fabs(s.angle);
+            if (!s.defined || surelyInside(s.roughAngle(), joint.pyramid.halfAngles[i] - settings.limitMargin)) continue;
+            const Real angle = s.angle();
+            const Real c = joint.pyramid.halfAngles[i] - std::fabs(angle);
             if (c >= settings.limitMargin) continue;
-            const Real sign = s.angle < 0 ? -1 : 1;
+            const Real sign = angle < 0 ? -1 : 1;
             writeAngleLimitRow(pair, c, -sign * s.gradient(shaft, basis.col(i), basis.col(2)), settings.limitCfm, out);
             ++written;
         }
@@ -110,12 +115,12 @@ Real shaftLimitViolation(const Joint& joint, const Pair& pair) {
     Real worst = 0;
     if (joint.limit == LimitType::Cone) {
         const ConeState s = coneState(shaft, pair.b.direction(joint.cone.axis));
-        worst = std::max(worst, s.angle - joint.cone.halfAngle);
+        worst = std::max(worst, s.angle() - joint.cone.halfAngle);
     } else if (joint.limit == LimitType::Pyramid) {
         const Mat3 basis = pair.b.rotation * joint.pyramid.basis;
         for (int i = 0; i < 2; ++i) {
             const FaceState s = faceState(shaft, basis.col(i), basis.col(2));
-            if (s.defined) worst = std::max(worst, std::fabs(s.angle) - joint.pyramid.halfAngles[i]);
+            if (s.defined) worst = std::max(worst, std::fabs(s.angle()) - joint.pyramid.halfAngles[i]);
         }
     }
     return worst;

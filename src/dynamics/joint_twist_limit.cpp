@@ -28,11 +28,14 @@ Vec3 alongShortestArc(const Vec3& from, const Vec3& to, const Vec3& v) {
     return Quat::FromTwoVectors(from, to) * v;
 }
 
+// θ = atan2(y, x), made (as its rate) only when a row may be written.
 struct TwistState {
     Vec3 b, c;  // A's shaft and B's axis
-    Real angle = 0;
+    Real y = 0, x = 0;
 
-    // k: dθ/dt = (ωA − ωB)·k, made only for a row that is written.
+    Real angle() const { return std::atan2(y, x); }
+    Real roughAngle() const { return roughAtan2(y, x); }
+    // k: dθ/dt = (ωA − ωB)·k.
     Vec3 rate() const { return (b + c) / std::max(Real(1e-9), 1 + b.dot(c)); }
 };
 
@@ -42,7 +45,8 @@ TwistState twistState(const Joint& joint, const Pair& pair) {
     s.c = pair.b.direction(joint.twistAxisB);
     const Vec3 swungBack = alongShortestArc(s.b, s.c, pair.a.direction(joint.twistReferenceA));
     const Vec3 reference = pair.b.direction(joint.twistReferenceB);
-    s.angle = std::atan2(reference.cross(swungBack).dot(s.c), reference.dot(swungBack));
+    s.y = reference.cross(swungBack).dot(s.c);
+    s.x = reference.dot(swungBack);
     return s;
 }
 
@@ -56,13 +60,16 @@ bool limited(const Joint& joint) { return joint.twistHalfAngle > 0 && joint.twis
 int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
     if (!limited(joint)) return 0;
     const TwistState s = twistState(joint, pair);
+    // Most writes find the twist far inside its limits and need no exact angle.
+    if (surelyInside(s.roughAngle(), joint.twistHalfAngle - settings.limitMargin)) return 0;
+    const Real angle = s.angle();
     int written = 0;
-    const Real upper = joint.twistHalfAngle - s.angle;
+    const Real upper = joint.twistHalfAngle - angle;
     if (upper < settings.limitMargin) {
         addRow(pair, [&] { return angularJacobian(-s.rate()); }, upper, 0, kInfinity, settings.limitCfm, out);
         ++written;
     }
-    const Real lower = joint.twistHalfAngle + s.angle;
+    const Real lower = joint.twistHalfAngle + angle;
     if (lower < settings.limitMargin) {
         addRow(pair, [&] { return angularJacobian(s.rate()); }, lower, 0, kInfinity, settings.limitCfm, out);
         ++written;
@@ -72,9 +79,9 @@ int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSett
 
 Real twistLimitViolation(const Joint& joint, const Pair& pair) {
     if (!limited(joint)) return 0;
-    return std::max(Real(0), std::fabs(twistState(joint, pair).angle) - joint.twistHalfAngle);
+    return std::max(Real(0), std::fabs(twistState(joint, pair).angle()) - joint.twistHalfAngle);
 }
 
-Real twistAngleOf(const Joint& joint, const Pair& pair) { return twistState(joint, pair).angle; }
+Real twistAngleOf(const Joint& joint, const Pair& pair) { return twistState(joint, pair).angle(); }
 
 }  // namespace af::joint_detail

@@ -3,6 +3,7 @@
 // back inside, and the angles mean what §3.8 says (full cone angle, pyramid faces and roll,
 // the hinge's V). Angles are exact to 1e-9 rad; tests stay ≥ 0.1° away from the margin's edge.
 
+#include "dynamics/joint_parts.h"
 #include "joint_test_util.h"
 
 namespace af::test {
@@ -168,6 +169,37 @@ TEST(JointLimit, HingeLimitRowAppearsWithinTheMarginAndTurnsBack) {
         EXPECT_EQ(r.limit().lo, 0);
         if (std::fabs(phi) > 45) expectRowLeadsBackInside(j, bodies, r.limit());
     }
+}
+
+// The writers skip the exact angle of a joint surely inside its limit, judged by roughAtan2:
+// rows still appear exactly from the margin's edge on, however close to it.
+TEST(JointLimit, LimitRowsAppearFromTheMarginsEdgeOnToWithin1e7Radians) {
+    const Vec3 axis(0, 1, 0);
+    const Joint hinge = hingeWith(axis, {0, 90, 0}, kHanging, {}, kWorld);  // |angle| ≤ 45°
+    const Joint cone = hangingBall(LimitType::Cone, {60, 0, 0});         // tilt ≤ 30°
+    for (const Real beyond : {-1e-7, 1e-7}) {
+        SCOPED_TRACE(beyond);
+        const Real hingeTurn = rad(45) - kLimitMarginRadians + beyond;
+        for (const Real sign : {-1.0, 1.0}) {
+            std::vector<RigidBody> bodies = {bodyAt(kHanging), bodyAt({})};
+            turnBodyAbout(bodies, 0, Quat(Eigen::AngleAxis<Real>(sign * hingeTurn, axis)), Vec3::Zero());
+            EXPECT_EQ(limitRows(hinge, bodies).range.limitRows, beyond > 0 ? 1 : 0);
+        }
+        const Real coneTilt = rad(30) - kLimitMarginRadians + beyond;
+        EXPECT_EQ(limitRows(cone, hangingTurned(Vec3(1, 2, 0), coneTilt * 180 / kPi)).range.limitRows, beyond > 0 ? 1 : 0);
+    }
+}
+
+TEST(JointLimit, RoughAtan2IsWithin12MicroradiansOfAtan2AllRoundAndAtTheAxes) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<Real> coordinate(-2, 2);
+    for (int k = 0; k < 100000; ++k) {
+        const Real y = coordinate(random);
+        const Real x = coordinate(random);
+        ASSERT_NEAR(joint_detail::roughAtan2(y, x), std::atan2(y, x), 1.2e-5) << "y = " << y << ", x = " << x;
+    }
+    for (const Real y : {0.0, -0.0, 1.0, -1.0})
+        for (const Real x : {0.0, -0.0, 1.0, -1.0}) EXPECT_NEAR(joint_detail::roughAtan2(y, x), std::atan2(y, x), 1.2e-5);
 }
 
 TEST(JointLimit, BallTwistIsTheTurnAboutTheShaftWithTheSwingTakenOut) {
