@@ -66,8 +66,7 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
     const Vec3 u2 = hA.cross(u1);
     for (const Vec3& u : {u1, u2}) {
         const Vec3 g = u.cross(hB);
-        addRow(pair, [&] { return Jacobian{Vec3::Zero(), g, Vec3::Zero(), -g}; }, hB.dot(u), -kInfinity, kInfinity,
-               settings.jointCfm, out);
+        addAngularRow(pair, [&] { return g; }, hB.dot(u), -kInfinity, kInfinity, settings.jointCfm, out);
     }
     range.equalityRows = 5;
 
@@ -81,8 +80,7 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
         const Real c = joint.hinge.halfWidth - std::fabs(d);
         if (!far && c < settings.limitMargin) {
             const Vec3 g = (d < 0 ? 1 : -1) * s.gradient();
-            addRow(pair, [&] { return Jacobian{Vec3::Zero(), g, Vec3::Zero(), -g}; }, c, 0, kInfinity, settings.limitCfm,
-                   out);
+            addAngularRow(pair, [&] { return g; }, c, 0, kInfinity, settings.limitCfm, out);
             range.limitRows = 1;
         }
     }

@@ -96,6 +96,17 @@ void addRow(const Pair& pair, const Jacobian& j, Real error, Real lo, Real hi, R
                    Real(0), relativeCfm * diagonal);
 }
 
+// addRow's diagonal is (mA·0 + gᵀIA g) + mB·0 + (−g)ᵀIB(−g): the zero terms add nothing, and
+// negating g negates IB g exactly.
+void addAngularRow(const Pair& pair, const Vec3& g, Real error, Real lo, Real hi, Real relativeCfm,
+                   ConstraintRows& out) {
+    const bool againstWorld = pair.b.index == kWorldBody;
+    const Vec3 angularB = againstWorld ? Vec3::Zero() : Vec3(-g);
+    const Real diagonal = g.dot(pair.a.inverseInertia * g) + angularB.dot(pair.b.inverseInertia * angularB);
+    out.appendMade(pair.a.index, pair.b.index, Vec3::Zero(), g, Vec3::Zero(), angularB, Real(0), error, lo, hi, -1,
+                   Real(0), relativeCfm * diagonal);
+}
+
 Vec3 perpendicular(const Vec3& v) {
     // Doom's idVec3::OrthogonalBasis `left`: avoid the axis v is closest to, so the result is
     // well scaled. Doom's |z| > 0.7 branch has the signs of its last two components flipped and
@@ -165,7 +176,7 @@ void writeOrientationRows(const Pair& pair, const Quat& relative, Real relativeC
 Real rotationAngle(const Quat& q) { return 2 * std::atan2(q.vec().norm(), std::fabs(q.w())); }
 
 void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Real relativeCfm, RowOut out) {
-    addRow(pair, [&] { return Jacobian{Vec3::Zero(), axis, Vec3::Zero(), -axis}; }, 0, -bound, bound, relativeCfm, out);
+    addAngularRow(pair, [&] { return axis; }, 0, -bound, bound, relativeCfm, out);
 }
 
 Real frictionBound(const Joint& joint) {

@@ -73,8 +73,7 @@ FaceState faceState(const Vec3& shaft, const Vec3& side, const Vec3& axis) {
 }
 
 void writeAngleLimitRow(const Pair& pair, Real error, const Vec3& gradient, Real relativeCfm, RowOut out) {
-    addRow(pair, [&] { return Jacobian{Vec3::Zero(), gradient, Vec3::Zero(), -gradient}; }, error, 0, kInfinity, relativeCfm,
-           out);
+    addAngularRow(pair, [&] { return gradient; }, error, 0, kInfinity, relativeCfm, out);
 }
 
 }  // namespace

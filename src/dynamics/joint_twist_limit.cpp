@@ -50,9 +50,6 @@ TwistState twistState(const Joint& joint, const Pair& pair) {
     return s;
 }
 
-// J = [0 │ g │ 0 │ −g].
-Jacobian angularJacobian(const Vec3& g) { return {Vec3::Zero(), g, Vec3::Zero(), -g}; }
-
 bool limited(const Joint& joint) { return joint.twistHalfAngle > 0 && joint.twistHalfAngle < kPi; }
 
 }  // namespace
@@ -66,12 +63,12 @@ int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSett
     int written = 0;
     const Real upper = joint.twistHalfAngle - angle;
     if (upper < settings.limitMargin) {
-        addRow(pair, [&] { return angularJacobian(-s.rate()); }, upper, 0, kInfinity, settings.limitCfm, out);
+        addAngularRow(pair, [&] { return Vec3(-s.rate()); }, upper, 0, kInfinity, settings.limitCfm, out);
         ++written;
     }
     const Real lower = joint.twistHalfAngle + angle;
     if (lower < settings.limitMargin) {
-        addRow(pair, [&] { return angularJacobian(s.rate()); }, lower, 0, kInfinity, settings.limitCfm, out);
+        addAngularRow(pair, [&] { return s.rate(); }, lower, 0, kInfinity, settings.limitCfm, out);
         ++written;
     }
     return written;

@@ -47,8 +47,7 @@ JointRowRange writeUniversalRows(const Joint& joint, const Pair& pair, const Joi
     JointRowRange range;
     writePointRows(pair, pair.a.point(joint.anchorA), pair.b.point(joint.anchorB), settings.jointCfm, out);
     const TwistState twist = twistState(joint, pair);
-    addRow(pair, [&] { return Jacobian{Vec3::Zero(), twist.gradient, Vec3::Zero(), -twist.gradient}; }, twist.error,
-           -kInfinity, kInfinity, settings.jointCfm, out);
+    addAngularRow(pair, [&] { return twist.gradient; }, twist.error, -kInfinity, kInfinity, settings.jointCfm, out);
     range.equalityRows = 4;
     range.limitRows = writeShaftLimitRows(joint, pair, settings, out);
     if (const Real bound = frictionBound(joint); bound > 0) {
