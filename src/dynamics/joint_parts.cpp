@@ -142,14 +142,33 @@ Real roughAtan2(Real y, Real x) {
     return std::signbit(y) ? -a : a;
 }
 
+namespace {
+
+// The point row along the world axis e: J = [e │ rA × e │ −e │ e × rB]. addRow's row, with
+// mA·|e|² + mB·|−e|² as mA + mB (|e|² = 1 exactly), which spares it two squared norms.
+void addPointRow(const Pair& pair, const Vec3& e, const Vec3& rA, const Vec3& rB, Real error, Real relativeCfm,
+                 ConstraintRows& out) {
+    const bool againstWorld = pair.b.index == kWorldBody;
+    const Vec3 angularA = rA.cross(e);
+    const Vec3 linearB = againstWorld ? Vec3::Zero() : Vec3(-e);
+    const Vec3 angularB = againstWorld ? Vec3::Zero() : Vec3(e.cross(rB));
+    const Real diagonal = pair.a.inverseMass + angularA.dot(pair.a.inverseInertia * angularA) + pair.b.inverseMass +
+                          angularB.dot(pair.b.inverseInertia * angularB);
+    out.appendMade(pair.a.index, pair.b.index, e, angularA, linearB, angularB, Real(0), error, -kInfinity, kInfinity,
+                   -1, Real(0), relativeCfm * diagonal);
+}
+
+}  // namespace
+
 void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Real relativeCfm, RowOut out) {
     const Vec3 rA = pointA - pair.a.position;
     const Vec3 rB = pointB - pair.b.position;
     const Vec3 error = pointA - pointB;
     for (int i = 0; i < 3; ++i) {
-        const Vec3 e = Vec3::Unit(i);
-        addRow(pair, [&] { return Jacobian{e, rA.cross(e), -e, e.cross(rB)}; }, error[i], -kInfinity, kInfinity,
-               relativeCfm, out);
+        if (ConstraintRows* rows = out.rows())
+            addPointRow(pair, Vec3::Unit(i), rA, rB, error[i], relativeCfm, *rows);
+        else
+            out.errors()->push_back({error[i], -kInfinity, kInfinity});
     }
 }
 
