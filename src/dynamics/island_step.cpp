@@ -354,14 +354,7 @@ bool Island::putBackViolated() {
     accumulateResponses(rows_.all(), system_.responses(), tree_.impulses(), shiftLinear_, shiftAngular_);
     const auto violated = [&](const HeldRow& held) {
         ConstraintRow& r = rows_[held.row];
-        Real w = r.error;
-        if (r.bodyA != kWorldBody)
-            w += r.linearA.dot(shiftLinear_[static_cast<std::size_t>(r.bodyA)]) +
-                 r.angularA.dot(shiftAngular_[static_cast<std::size_t>(r.bodyA)]);
-        if (r.bodyB != kWorldBody)
-            w += r.linearB.dot(shiftLinear_[static_cast<std::size_t>(r.bodyB)]) +
-                 r.angularB.dot(shiftAngular_[static_cast<std::size_t>(r.bodyB)]);
-        if (w >= 0) return false;
+        if (r.error + rowAlong(r, shiftLinear_, shiftAngular_) >= 0) return false;
         r.hi = held.hi;
         return true;
     };

@@ -42,6 +42,16 @@ inline Real rowVelocity(const ConstraintRow& r, std::span<const RigidBody> bodie
     return cdot;
 }
 
+// J of a row times per-body vectors: the velocity change or the move they hold for its bodies.
+inline Real rowAlong(const ConstraintRow& r, std::span<const Vec3> linear, std::span<const Vec3> angular) {
+    Real v = 0;
+    if (r.bodyA != kWorldBody)
+        v += r.linearA.dot(linear[static_cast<std::size_t>(r.bodyA)]) + r.angularA.dot(angular[static_cast<std::size_t>(r.bodyA)]);
+    if (r.bodyB != kWorldBody)
+        v += r.linearB.dot(linear[static_cast<std::size_t>(r.bodyB)]) + r.angularB.dot(angular[static_cast<std::size_t>(r.bodyB)]);
+    return v;
+}
+
 // A_ij without CFM: row i's velocity per unit impulse of row j (response mj), through the bodies
 // the two rows share.
 inline Real rowCoupling(const ConstraintRow& ri, const ConstraintRow& rj, const RowResponse& mj) {

@@ -98,16 +98,7 @@ private:
     void velocityChange(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                         std::span<const Real> x, std::span<const std::uint8_t> use);
     // J of the row times the velocity change held in linear_ and angular_ (inline, as above).
-    Real along(const ConstraintRow& r) const {
-        Real v = 0;
-        if (r.bodyA != kWorldBody)
-            v += r.linearA.dot(linear_[static_cast<std::size_t>(r.bodyA)]) +
-                 r.angularA.dot(angular_[static_cast<std::size_t>(r.bodyA)]);
-        if (r.bodyB != kWorldBody)
-            v += r.linearB.dot(linear_[static_cast<std::size_t>(r.bodyB)]) +
-                 r.angularB.dot(angular_[static_cast<std::size_t>(r.bodyB)]);
-        return v;
-    }
+    Real along(const ConstraintRow& r) const { return rowAlong(r, linear_, angular_); }
 
     SparseRowFactor factor_;
     Real boundGap_ = 0;  // of the last solved answer: its rows at a bound, how far off it
