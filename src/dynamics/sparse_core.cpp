@@ -103,8 +103,11 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     reached_.resize(m * groups);
     pathStart_.resize(m);
     for (std::size_t u = 0; u < m; ++u) {
-        const std::span<Real> path(&paths_[u * vars], vars);
-        const std::span<std::uint8_t> reached(&reached_[u * groups], groups);
+        // data() + offset: with no free rows outside the core (a lone box whose every point is
+        // in it) the factorisation has no variables, and element access on the empty vectors
+        // would be undefined.
+        const std::span<Real> path(paths_.data() + u * vars, vars);
+        const std::span<std::uint8_t> reached(reached_.data() + u * groups, groups);
         factor_.column(core_[u], rows, responses, path, reached);
         factor_.forward(path, reached);
         std::size_t g = 0;

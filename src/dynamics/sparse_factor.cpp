@@ -136,7 +136,7 @@ void SparseRowFactor::order(const std::vector<std::uint8_t>& active) {
     adjacency_.resize(graph_.size());
     for (std::size_t g = 0; g < groups; ++g)
         for (std::size_t w = 0; w < words; ++w) adjacency_[g * words + w] = graph_[g * words + w] & remaining_[w];
-    auto row = [&](std::size_t g) { return &adjacency_[g * words]; };
+    auto row = [&](std::size_t g) { return adjacency_.data() + g * words; };
     // Pairs of g's remaining neighbours that are not neighbours of each other.
     auto missing = [&](std::size_t g, std::size_t& degree) {
         const std::uint64_t* n = row(g);
@@ -297,7 +297,7 @@ void SparseRowFactor::assemble(std::span<const ConstraintRow> rows, std::span<co
         for (std::size_t i = 0; i < packed_.size(); ++i) {
             const Packed& ri = packed_[i];
             const std::size_t gr = static_cast<std::size_t>(ri.group);
-            Real* column = &values_[static_cast<std::size_t>(panelStart_[gr] + ri.local * panelHeight_[gr])];
+            Real* column = values_.data() + static_cast<std::size_t>(panelStart_[gr] + ri.local * panelHeight_[gr]);
             int group = ri.group, offset = 0;
             for (std::size_t k = i; k < packed_.size(); ++k) {
                 const Packed& rk = packed_[k];
@@ -329,9 +329,9 @@ bool SparseRowFactor::eliminate(int k) {
     const int n = size_[g];
     if (n == 0) return true;
     const int height = panelHeight_[g];
-    Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
+    Real* panel = values_.data() + static_cast<std::size_t>(panelStart_[g]);
     auto at = [&](int i, int j) -> Real& { return panel[j * height + i]; };
-    const Real* own = &diagonal_[static_cast<std::size_t>(varStart_[g])];
+    const Real* own = diagonal_.data() + static_cast<std::size_t>(varStart_[g]);
     for (int j = 0; j < n; ++j) {
         for (int t = 0; t < j; ++t) {
             const Real f = at(j, t) * at(t, t);
@@ -351,12 +351,12 @@ bool SparseRowFactor::eliminate(int k) {
     for (int t = 0; t < n; ++t) {
         const Real d = at(t, t);
         const Real* l = &panel[t * height + n];
-        Real* w = &scaled_[static_cast<std::size_t>(t * below)];
+        Real* w = scaled_.data() + static_cast<std::size_t>(t * below);
         for (int i = 0; i < below; ++i) w[i] = l[i] * d;
         for (int c = 0; c < below; ++c) {
             const Real f = l[c];
             if (f == 0) continue;
-            Real* u = &update_[static_cast<std::size_t>(c * below)];
+            Real* u = update_.data() + static_cast<std::size_t>(c * below);
             for (int r = c; r < below; ++r) u[r] += w[r] * f;
         }
     }
@@ -364,7 +364,7 @@ bool SparseRowFactor::eliminate(int k) {
         const std::size_t ga = static_cast<std::size_t>(front_[static_cast<std::size_t>(sa)]);
         const int oa = blockOffset_[static_cast<std::size_t>(sa)] - n, na = size_[ga];
         if (na == 0) continue;
-        Real* target = &values_[static_cast<std::size_t>(panelStart_[ga])];
+        Real* target = values_.data() + static_cast<std::size_t>(panelStart_[ga]);
         const int targetHeight = panelHeight_[ga];
         for (int sb = sa; sb < frontStart_[g + 1]; ++sb) {
             const std::size_t gb = static_cast<std::size_t>(front_[static_cast<std::size_t>(sb)]);
@@ -372,7 +372,7 @@ bool SparseRowFactor::eliminate(int k) {
             if (nb == 0) continue;
             const int into = sa == sb ? 0 : blockOffset_[static_cast<std::size_t>(frontSlot(static_cast<int>(ga), static_cast<int>(gb)))];
             for (int c = 0; c < na; ++c) {
-                const Real* u = &update_[static_cast<std::size_t>((oa + c) * below + ob)];
+                const Real* u = update_.data() + static_cast<std::size_t>((oa + c) * below + ob);
                 Real* out = &target[c * targetHeight + into];
                 for (int r = sa == sb ? c : 0; r < nb; ++r) out[r] -= u[r];
             }
@@ -417,7 +417,7 @@ void SparseRowFactor::unit(int row, std::span<Real> y, std::span<std::uint8_t> a
 void SparseRowFactor::forward(std::span<Real> y, std::span<std::uint8_t> active) const {
     for (std::size_t g = 0; g < groupKeys_.size(); ++g) {
         if (!active[g] || size_[g] == 0) continue;
-        const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
+        const Real* panel = values_.data() + static_cast<std::size_t>(panelStart_[g]);
         const int height = panelHeight_[g], n = size_[g];
         Real* yg = &y[static_cast<std::size_t>(varStart_[g])];
         for (int j = 0; j < n; ++j)
@@ -435,7 +435,7 @@ void SparseRowFactor::forward(std::span<Real> y, std::span<std::uint8_t> active)
 
 void SparseRowFactor::inversePivots(std::span<Real> out) const {
     for (std::size_t g = 0; g < groupKeys_.size(); ++g) {
-        const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
+        const Real* panel = values_.data() + static_cast<std::size_t>(panelStart_[g]);
         for (int j = 0; j < size_[g]; ++j) out[static_cast<std::size_t>(varStart_[g] + j)] = 1 / panel[j * (panelHeight_[g] + 1)];
     }
 }
@@ -472,8 +472,8 @@ void SparseRowFactor::solve(std::span<Real> x) const {
     for (std::size_t g = 0; g < groups; ++g) {
         const int n = size_[g], height = panelHeight_[g];
         if (n == 0) continue;
-        const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
-        Real* y = &work_[static_cast<std::size_t>(varStart_[g])];
+        const Real* panel = values_.data() + static_cast<std::size_t>(panelStart_[g]);
+        Real* y = work_.data() + static_cast<std::size_t>(varStart_[g]);
         for (int j = 0; j < n; ++j) {
             const Real* l = &panel[j * height];
             for (int i = j + 1; i < n; ++i) y[i] -= l[i] * y[j];
@@ -491,8 +491,8 @@ void SparseRowFactor::solve(std::span<Real> x) const {
     for (std::size_t g = groups; g-- > 0;) {
         const int n = size_[g], height = panelHeight_[g];
         if (n == 0) continue;
-        const Real* panel = &values_[static_cast<std::size_t>(panelStart_[g])];
-        Real* y = &work_[static_cast<std::size_t>(varStart_[g])];
+        const Real* panel = values_.data() + static_cast<std::size_t>(panelStart_[g]);
+        Real* y = work_.data() + static_cast<std::size_t>(varStart_[g]);
         const int* below = belowVariable_.data() + belowStart_[g];  // empty for a group without front
         const int m = height - n;
         for (int j = 0; j < n; ++j) {

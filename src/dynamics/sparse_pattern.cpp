@@ -55,8 +55,9 @@ bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::spa
     const std::size_t groups = static_cast<std::size_t>(factor_.groups());
     paths_.resize(2 * k * vars);
     reached_.resize(2 * k * groups);
-    auto path = [&](std::size_t p) { return std::span<Real>(&paths_[p * vars], vars); };
-    auto reached = [&](std::size_t p) { return std::span<std::uint8_t>(&reached_[p * groups], groups); };
+    // data() + offset, as in solveCore: no free rows, no variables, empty vectors.
+    auto path = [&](std::size_t p) { return std::span<Real>(paths_.data() + p * vars, vars); };
+    auto reached = [&](std::size_t p) { return std::span<std::uint8_t>(reached_.data() + p * groups, groups); };
     supports_.clear();
     supportStart_.assign(1, 0);
     for (std::size_t j = 0; j < 2 * k; ++j) {
