@@ -164,12 +164,9 @@ void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Re
     const Vec3 rA = pointA - pair.a.position;
     const Vec3 rB = pointB - pair.b.position;
     const Vec3 error = pointA - pointB;
-    for (int i = 0; i < 3; ++i) {
-        if (ConstraintRows* rows = out.rows())
-            addPointRow(pair, Vec3::Unit(i), rA, rB, error[i], relativeCfm, *rows);
-        else
-            out.errors()->push_back({error[i], -kInfinity, kInfinity});
-    }
+    for (int i = 0; i < 3; ++i)
+        out.add(error[i], -kInfinity, kInfinity,
+                [&](ConstraintRows& rows) { addPointRow(pair, Vec3::Unit(i), rA, rB, error[i], relativeCfm, rows); });
 }
 
 Quat errorRotation(const Pair& pair, const Quat& relative) {

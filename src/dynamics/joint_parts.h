@@ -21,6 +21,15 @@ public:
     RowOut(std::vector<RowError>& errors) : errors_(&errors) {}
     ConstraintRows* rows() const { return rows_; }
     std::vector<RowError>* errors() const { return errors_; }
+    // A row made whole by write(rows) when rows are written, otherwise only its error and bounds
+    // (whatever write would compute for the Jacobian is never computed then).
+    template <class Write>
+    void add(Real error, Real lo, Real hi, Write&& write) const {
+        if (rows_)
+            write(*rows_);
+        else
+            errors_->push_back({error, lo, hi});
+    }
 
 private:
     ConstraintRows* rows_ = nullptr;
@@ -77,10 +86,7 @@ void addRow(const Pair& pair, const Jacobian& jacobian, Real error, Real lo, Rea
 // The same with the Jacobian made by jacobianOf() only when whole rows are written.
 template <std::invocable JacobianOf>
 void addRow(const Pair& pair, JacobianOf&& jacobianOf, Real error, Real lo, Real hi, Real relativeCfm, RowOut out) {
-    if (ConstraintRows* rows = out.rows())
-        addRow(pair, jacobianOf(), error, lo, hi, relativeCfm, *rows);
-    else
-        out.errors()->push_back({error, lo, hi});
+    out.add(error, lo, hi, [&](ConstraintRows& rows) { addRow(pair, jacobianOf(), error, lo, hi, relativeCfm, rows); });
 }
 
 // Appends a row J = [0 │ g │ 0 │ −g] on the relative angular velocity (limits, friction, the
@@ -90,10 +96,8 @@ void addAngularRow(const Pair& pair, const Vec3& g, Real error, Real lo, Real hi
 // The same with g made by gradientOf() only when whole rows are written.
 template <std::invocable GradientOf>
 void addAngularRow(const Pair& pair, GradientOf&& gradientOf, Real error, Real lo, Real hi, Real relativeCfm, RowOut out) {
-    if (ConstraintRows* rows = out.rows())
-        addAngularRow(pair, gradientOf(), error, lo, hi, relativeCfm, *rows);
-    else
-        out.errors()->push_back({error, lo, hi});
+    out.add(error, lo, hi,
+            [&](ConstraintRows& rows) { addAngularRow(pair, gradientOf(), error, lo, hi, relativeCfm, rows); });
 }
 
 // A unit vector ⟂ unit v (the hinge `left` of §3.8, made orthogonal).
