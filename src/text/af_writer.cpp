@@ -1,7 +1,7 @@
 #include "af/text/af_writer.h"
 
-#include "af/text/number_format.h"
 #include "af/text/contents.h"
+#include "text_writer.h"
 
 namespace af {
 
@@ -13,14 +13,8 @@ constexpr const char* kHeaderComment =
     "\tThe layout is that of the Doom 3 AF editor; comments in a decl are not kept.\n"
     "*/\n\n";
 
-class Writer {
+class Writer : public text_detail::TextWriter<Writer> {
 public:
-    std::string take() { return std::move(out_); }
-
-    Writer& raw(std::string_view s) { return out_ += s, *this; }
-    Writer& num(Real v) { return raw(formatDeclFloat(v)); }
-    Writer& integer(int v) { return raw(std::to_string(v)); }
-    Writer& quoted(std::string_view s) { return raw("\"").raw(s).raw("\""); }
     Writer& key(std::string_view k) { return raw("\t").raw(k).raw(" "); }
     Writer& end() { return raw("\n"); }
 
@@ -146,8 +140,6 @@ private:
         return key("pyramidLimit").vec(c.limitAxis).raw(", ").num(c.limitAngles[0]).raw(", ").num(c.limitAngles[1])
             .raw(", ").num(c.limitAngles[2]);
     }
-
-    std::string out_;
 };
 
 }  // namespace

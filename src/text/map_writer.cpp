@@ -2,20 +2,14 @@
 // house format of §1.10.
 
 #include "af/text/map_file.h"
-#include "af/text/number_format.h"
+#include "text_writer.h"
 
 namespace af {
 
 namespace {
 
-class Writer {
+class Writer : public text_detail::TextWriter<Writer> {
 public:
-    std::string take() { return std::move(out_); }
-
-    Writer& raw(std::string_view s) { return out_ += s, *this; }
-    Writer& num(Real v) { return raw(formatDeclFloat(v)); }
-    Writer& quoted(std::string_view s) { return raw("\"").raw(s).raw("\""); }
-
     // `( v v v )` from any range of numbers.
     template <class Numbers>
     Writer& numbers(const Numbers& values) {
@@ -69,9 +63,6 @@ public:
         for (std::size_t j = 0; j < e.primitives.size(); ++j) primitive(e.primitives[j], j);
         raw("}\n");
     }
-
-private:
-    std::string out_;
 };
 
 }  // namespace

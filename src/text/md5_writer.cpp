@@ -2,7 +2,7 @@
 
 #include "af/text/md5_writer.h"
 
-#include "af/text/number_format.h"
+#include "text_writer.h"
 
 #include <bit>
 #include <cmath>
@@ -63,14 +63,8 @@ void checkWritable(const Md5Anim& a) {
     for (Real v : a.components) checkFinite(v, "a frame component");
 }
 
-class Writer {
+class Writer : public text_detail::TextWriter<Writer> {
 public:
-    std::string take() { return std::move(out_); }
-
-    Writer& raw(std::string_view s) { return out_ += s, *this; }
-    Writer& num(Real v) { return raw(formatDeclFloat(v)); }
-    Writer& integer(int v) { return raw(std::to_string(v)); }
-    Writer& quoted(std::string_view s) { return raw("\"").raw(s).raw("\""); }
     Writer& tuple(Real x, Real y, Real z) { return raw("( ").num(x).raw(" ").num(y).raw(" ").num(z).raw(" )"); }
     Writer& tuple(const Real3& v) { return tuple(v[0], v[1], v[2]); }
 
@@ -133,9 +127,6 @@ public:
             raw("}\n\n");
         }
     }
-
-private:
-    std::string out_;
 };
 
 // Through a volatile because GCC 12.2's SLP vectorizer (on at -O2) drops the rounding of a

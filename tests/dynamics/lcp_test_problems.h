@@ -125,18 +125,22 @@ inline void randomBounds(Rng& rng, DenseLcp& p, int row) {
     p.hi[row] = hi;
 }
 
+/// A random positive definite A for p: a dense Gram, or (half the time) a Jacobian Gram of rows on
+/// one or two bodies with CFM, as contacts and joints make.
+inline void setRandomMatrix(Rng& rng, DenseLcp& p) {
+    if (rng.chance(0.5)) {
+        setMatrix(p, randomGram(rng, p.n));
+        return;
+    }
+    setMatrix(p, randomJacobianGram(rng, p.n, 1 + rng.below(2)));
+    p.cfm.resize(static_cast<std::size_t>(p.n));
+    for (Real& c : p.cfm) c = rng.uniform(1e-3, 0.05);
+}
+
 /// A small uncoupled problem: n rows, positive definite (Gram, or Jacobian Gram plus CFM).
 inline DenseLcp randomUncoupledProblem(Rng& rng, int n) {
     DenseLcp p(n);
-    if (rng.chance(0.5)) {
-        setMatrix(p, randomGram(rng, n));
-    } else {
-        setMatrix(p, randomJacobianGram(rng, n, 1 + rng.below(2)));
-        p.cfm.resize(n);
-        for (Real& c : p.cfm) {
-            c = rng.uniform(1e-3, 0.05);
-        }
-    }
+    setRandomMatrix(rng, p);
     for (int i = 0; i < n; ++i) {
         randomBounds(rng, p, i);
         p.b[i] = rng.uniform(-1, 1);
@@ -149,16 +153,8 @@ inline DenseLcp randomUncoupledProblem(Rng& rng, int n) {
 /// or a dense Gram.
 inline DenseLcp randomCoupledProblem(Rng& rng, int contacts, int others) {
     const int n = 3 * contacts + others;
-    DenseLcp  p(n);
-    if (rng.chance(0.5)) {
-        setMatrix(p, randomGram(rng, n));
-    } else {
-        setMatrix(p, randomJacobianGram(rng, n, 1 + rng.below(2)));
-        p.cfm.resize(n);
-        for (Real& c : p.cfm) {
-            c = rng.uniform(1e-3, 0.05);
-        }
-    }
+    DenseLcp p(n);
+    setRandomMatrix(rng, p);
     for (int c = 0; c < contacts; ++c) {
         const int normal = 3 * c;
         p.lo[normal] = 0;

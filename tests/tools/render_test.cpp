@@ -92,6 +92,26 @@ Camera frontCamera() {
     return c;
 }
 
+// A 400 × 300 picture of a scene, read back from its PNG, and the pixel a world point lands on.
+struct Picture {
+    Picture(const RenderScene& scene, const Camera& camera, const std::string& name)
+        : projector(camera, kWidth, kHeight) {
+        const TempPng path(name);
+        writePng(scene, camera, kWidth, kHeight, path);
+        image = readPng(path);
+    }
+    Rgb of(const Vec3& p) const {
+        const auto px = projector.toPixels(projector.toView(p));
+        EXPECT_TRUE(px.x() >= 0 && px.x() < kWidth && px.y() >= 0 && px.y() < kHeight) << px.transpose();
+        return image.at(std::clamp(static_cast<int>(px.x()), 0, kWidth - 1),
+                        std::clamp(static_cast<int>(px.y()), 0, kHeight - 1));
+    }
+
+    static constexpr int kWidth = 400, kHeight = 300;
+    af::render::detail::Projector projector;
+    Image image;
+};
+
 TEST(Render, PngHasTheRequestedSize) {
     RenderScene scene;
     scene.bodies.push_back(box(Vec3::Zero(), 10, kRed));
@@ -172,20 +192,11 @@ TEST(Render, BodyBesideAStepOnAFloorBrushIsInFullViewOfTheFittedCamera) {
     scene.bodies.push_back(box(Vec3(40, 0, 8), 8, kRed));
     scene.bodies.push_back(box(Vec3(20, 10, 4), 4, kBlue));
     scene.statics = defaultMapBrushes();
-    const Camera camera = fitCamera(scene);
-    const TempPng path("step");
-    writePng(scene, camera, 400, 300, path);
-    const Image image = readPng(path);
-    const af::render::detail::Projector projector(camera, 400, 300);
-    const auto pixelOf = [&](const Vec3& p) {
-        const auto px = projector.toPixels(projector.toView(p));
-        EXPECT_TRUE(px.x() >= 0 && px.x() < 400 && px.y() >= 0 && px.y() < 300) << px.transpose();
-        return image.at(std::clamp(static_cast<int>(px.x()), 0, 399), std::clamp(static_cast<int>(px.y()), 0, 299));
-    };
-    EXPECT_TRUE(reddish(pixelOf(Vec3(40, 0, 8))));
-    EXPECT_TRUE(bluish(pixelOf(Vec3(20, 10, 4))));
+    const Picture picture(scene, fitCamera(scene), "step");
+    EXPECT_TRUE(reddish(picture.of(Vec3(40, 0, 8))));
+    EXPECT_TRUE(bluish(picture.of(Vec3(20, 10, 4))));
     int red = 0, grey = 0;
-    for (const Rgb& c : image.pixels) {
+    for (const Rgb& c : picture.image.pixels) {
         red += reddish(c);
         grey += staticGrey(c);
     }
@@ -210,17 +221,9 @@ TEST(Render, BodyAboveAFloorBrushCastsAShadowOnIt) {
     RenderScene scene;
     scene.bodies.push_back(box(Vec3(0, 0, 30), 8, kRed));
     scene.statics.push_back(defaultMapBrushes().front());
-    const Camera camera = frontCamera();
-    const TempPng path("brush_shadow");
-    writePng(scene, camera, 400, 300, path);
-    const Image image = readPng(path);
-    const af::render::detail::Projector projector(camera, 400, 300);
-    const auto pixelOf = [&](const Vec3& p) {
-        const auto px = projector.toPixels(projector.toView(p));
-        return image.at(static_cast<int>(px.x()), static_cast<int>(px.y()));
-    };
+    const Picture picture(scene, frontCamera(), "brush_shadow");
     // Neither floor point is behind the box from this eye; only the first is under it.
-    const Rgb under = pixelOf(Vec3(0, 0, 0)), beside = pixelOf(Vec3(0, 40, 0));
+    const Rgb under = picture.of(Vec3(0, 0, 0)), beside = picture.of(Vec3(0, 40, 0));
     ASSERT_TRUE(staticGrey(beside));
     EXPECT_LT(under.luminance(), beside.luminance() - 0.05);
     EXPECT_LT(under.distance(beside), 0.5) << "darkened floor, not the body";
@@ -229,16 +232,8 @@ TEST(Render, BodyAboveAFloorBrushCastsAShadowOnIt) {
 TEST(Render, TopFaceIsShadedDifferentlyFromSideFace) {
     RenderScene scene;
     scene.bodies.push_back(box(Vec3::Zero(), 20, kRed));
-    const Camera camera = frontCamera();
-    const TempPng path("shading");
-    writePng(scene, camera, 400, 300, path);
-    const Image image = readPng(path);
-    const af::render::detail::Projector projector(camera, 400, 300);
-    const auto pixelOf = [&](const Vec3& p) {
-        const auto px = projector.toPixels(projector.toView(p));
-        return image.at(static_cast<int>(px.x()), static_cast<int>(px.y()));
-    };
-    const Rgb top = pixelOf(Vec3(0, 0, 20)), side = pixelOf(Vec3(20, 0, 0));
+    const Picture picture(scene, frontCamera(), "shading");
+    const Rgb top = picture.of(Vec3(0, 0, 20)), side = picture.of(Vec3(20, 0, 0));
     ASSERT_TRUE(reddish(top));
     ASSERT_TRUE(reddish(side));
     EXPECT_GT(top.r - side.r, 0.1) << "lit from above, the top is brighter";
