@@ -76,11 +76,17 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
         coreX_[u] = x[row];
         coreStates_[u] = states[row];
     }
+    // free_ holds the rows factor_ was last factorised with (a trial's, or the last round's): a
+    // core that frees none of them (its rows were all at bounds in the trial, or a round grown
+    // only by rows at bounds) keeps that factorisation, as solvePattern does.
+    bool freeSetChanged = false;
     for (std::size_t pass = 0; pass < 2; ++pass)
         for (std::size_t i = 0; i < n; ++i) {
             const int s = source(problem, i);
             if ((s >= 0) != (pass == 1)) continue;
-            free_[i] = !inCore_[i] && states[i] == LcpRowState::Free ? 1 : 0;
+            const std::uint8_t isFree = !inCore_[i] && states[i] == LcpRowState::Free ? 1 : 0;
+            freeSetChanged = freeSetChanged || free_[i] != isFree;
+            free_[i] = isFree;
             use_[i] = !inCore_[i] && clamped(states[i]) ? 1 : 0;
             if (inCore_[i]) x[i] = 0;
             if (!use_[i]) continue;
@@ -88,8 +94,10 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
             const Real lo = s >= 0 ? -box : problem.lo[i], hi = s >= 0 ? box : problem.hi[i];
             x[i] = states[i] == LcpRowState::AtLower ? lo : hi;
         }
-    ++result.factorisations;
-    if (!factor_.factor(rows, responses, problem.cfm, free_)) return -1;
+    if (freeSetChanged) {
+        ++result.factorisations;
+        if (!factor_.factor(rows, responses, problem.cfm, free_)) return -1;
+    }
     solveFree(rows, responses, problem.b, x, x);
 
     // b' through the bodies; S = A_UU − Wᵀ D⁻¹ W with W = L⁻¹ A_FU, the core rows' columns
