@@ -78,6 +78,8 @@ public:
                    std::span<const int> vGroups) const;
 
 private:
+    bool sameBodies(std::span<const ConstraintRow> rows, std::span<const RigidBody> bodies) const;
+    void rememberBodies(std::span<const ConstraintRow> rows, std::span<const RigidBody> bodies);
     void connect();
     void order(const std::vector<std::uint8_t>& active);
     void arrange();
@@ -97,6 +99,8 @@ private:
     std::vector<int> fill_;                  // scratch
     bool analysed_ = false;                  // rowKey_ and what follows from it are valid
     bool structureKept_ = false;             // see structureKept()
+    std::vector<int> rowBodies_;             // bodyA, bodyB of each row at the last analyse()
+    std::vector<std::uint8_t> dynamicBodies_;  // and which bodies were dynamic then
     std::vector<std::uint64_t> graph_;       // bit matrix of the pairs sharing a body
     std::size_t words_ = 0;                  // 64-bit words per row of graph_
     std::vector<std::uint64_t> adjacency_, remaining_;  // scratch: graph with fill, pairs left
