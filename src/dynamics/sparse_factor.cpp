@@ -491,6 +491,11 @@ Real SparseRowFactor::scaledDot(std::span<const Real> u, std::span<const int> uG
     return sum;
 }
 
+// Column by column in both sweeps: a variable's value is final before its column is used (the
+// forward sweep's y_j after the columns left of it, the backward one's after those right of it),
+// so each column's in-block part, its front part and its pivot are taken in one pass over it,
+// every sum in the order of separate passes (the same bits). A resting bench ragdoll's 101
+// variables in 24 groups: 24.2k -> 23.1k instructions a solve.
 void SparseRowFactor::solve(std::span<Real> x) const {
     const std::size_t groups = groupKeys_.size();
     const std::size_t vars = rowOfVariable_.size();
@@ -501,19 +506,15 @@ void SparseRowFactor::solve(std::span<Real> x) const {
         if (n == 0) continue;
         const Real* panel = values_.data() + static_cast<std::size_t>(panelStart_[g]);
         Real* y = work_.data() + static_cast<std::size_t>(varStart_[g]);
-        for (int j = 0; j < n; ++j) {
-            const Real* l = &panel[j * height];
-            for (int i = j + 1; i < n; ++i) y[i] -= l[i] * y[j];
-        }
         // The rows below the diagonal block, all front groups at once through their variables.
         const int* below = belowVariable_.data() + belowStart_[g];  // empty for a group without front
-        const int m = height - n;
         for (int j = 0; j < n; ++j) {
-            const Real* l = &panel[j * height + n];
+            const Real* l = &panel[j * height];
             const Real yj = y[j];
-            for (int r = 0; r < m; ++r) work_[static_cast<std::size_t>(below[r])] -= l[r] * yj;
+            for (int i = j + 1; i < n; ++i) y[i] -= l[i] * yj;
+            for (int r = 0; r < height - n; ++r) work_[static_cast<std::size_t>(below[r])] -= l[n + r] * yj;
+            y[j] = yj / l[j];
         }
-        for (int j = 0; j < n; ++j) y[j] /= panel[j * (height + 1)];
     }
     for (std::size_t g = groups; g-- > 0;) {
         const int n = size_[g], height = panelHeight_[g];
@@ -521,18 +522,13 @@ void SparseRowFactor::solve(std::span<Real> x) const {
         const Real* panel = values_.data() + static_cast<std::size_t>(panelStart_[g]);
         Real* y = work_.data() + static_cast<std::size_t>(varStart_[g]);
         const int* below = belowVariable_.data() + belowStart_[g];  // empty for a group without front
-        const int m = height - n;
-        for (int j = 0; j < n; ++j) {
-            const Real* l = &panel[j * height + n];
-            Real sum = 0;
-            for (int r = 0; r < m; ++r) sum += l[r] * work_[static_cast<std::size_t>(below[r])];
-            y[j] -= sum;
-        }
         for (int j = n; j-- > 0;) {
             const Real* l = &panel[j * height];
-            Real sum = 0;
-            for (int i = j + 1; i < n; ++i) sum += l[i] * y[i];
-            y[j] -= sum;
+            Real front = 0;
+            for (int r = 0; r < height - n; ++r) front += l[n + r] * work_[static_cast<std::size_t>(below[r])];
+            Real block = 0;
+            for (int i = j + 1; i < n; ++i) block += l[i] * y[i];
+            y[j] = (y[j] - front) - block;
         }
     }
     for (std::size_t v = 0; v < vars; ++v) x[static_cast<std::size_t>(rowOfVariable_[v])] = work_[v];
