@@ -95,6 +95,9 @@ private:
                source(problem, i) < 0;
     }
     void bounds(const LcpProblem& problem, std::span<const Real> x);
+    void bound(const LcpProblem& problem, std::span<const Real> x, std::size_t i);
+    void measureW(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
+                  std::span<const Real> x);
     void velocityChange(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                         std::span<const Real> x, std::span<const std::uint8_t> use);
     // J of the row times the velocity change held in linear_ and angular_ (inline, as above).
