@@ -93,6 +93,7 @@ struct World::State {
     void findContacts(Real dt);
     void findContactsOnce(Real dt, std::span<const std::uint8_t> around, std::vector<BodyContact>& out);
     bool searchAgain(Real dt);
+    void keepLastSearch();
     void rememberSearch();
     void buildIslands();
     template <class Run>

@@ -110,8 +110,12 @@ bool World::State::searchAgain(Real dt) {
         search.moving[i] = 1;
         anyMoving = true;
     }
+    if (!anyMoving) {
+        keepLastSearch();
+        return true;
+    }
     search.fresh.clear();
-    if (anyMoving) findContactsOnce(dt, search.moving, search.fresh);
+    findContactsOnce(dt, search.moving, search.fresh);
     const auto moving = [&](int body) { return body != kStaticWorld && search.moving[static_cast<std::size_t>(body)]; };
     const auto order = [](const BodyContact& c) {
         return c.bodyB == kStaticWorld ? std::tuple(1, c.bodyA, c.staticShape) : std::tuple(0, c.bodyA, c.bodyB);
@@ -136,12 +140,20 @@ bool World::State::searchAgain(Real dt) {
                       bodies);
     }
     addFresh(search.fresh.size());
-    searchKept = !anyMoving;
-    if (!anyMoving) return true;
     for (std::size_t i = 0; i < bodies.size(); ++i)
         if (search.moving[i]) search.poses[i] = poses[i];
     rememberSearch();
     return true;
+}
+
+// No body moved too far: the last search's manifolds and points, whole and in its order, with
+// one keep for all points. The merge above, with nothing to merge, took them manifold by
+// manifold (resting bench ragdoll: searchAgain 10.5k -> 9.1k instructions a step).
+void World::State::keepLastSearch() {
+    manifolds = search.manifolds;
+    contacts.clear();
+    contacts.keep(search.points, bodies);
+    searchKept = true;
 }
 
 void World::State::rememberSearch() {
