@@ -53,6 +53,7 @@ struct World::State {
         std::vector<RigidPose> poses;
         std::vector<BodyContact> manifolds;
         std::vector<ContactPoint> points;
+        Real penetration = 0;  // maxPenetration of the points at the poses they were found at
     };
     SettledContacts settled;
 

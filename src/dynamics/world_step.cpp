@@ -293,6 +293,7 @@ void World::State::settleNewContacts() {
     if (collision.bodyCount() == 0) return;
     Real sinceSettled = 0;
     const Real moved = movePoses(sinceSettled);
+    const Real allowed = settings.contact.slop + kPenetrationTolerance;
     const bool stayedApart = moved < settings.contactMargin / 4 && settings.contactMargin > 0;
     if (stayedApart && searchKept && sinceSettled <= settings.contactMargin * kSearchSlack / 2) {
         // The pairs are those the last settle looked at, and no body has moved more than σ/2
@@ -303,6 +304,11 @@ void World::State::settleNewContacts() {
         manifolds = settled.manifolds;
         contacts.clear();
         contacts.keepForPositions(settled.points);
+        // A point's depth −n·(pA − pB) changes by at most its two bodies' surface moves, each
+        // at most sinceSettled: below the tolerance by that much, no island needs a look (resting
+        // bench ragdoll: settleNewContacts 4.7k -> 3.6k instructions a step).
+        if (settled.penetration + 2 * sinceSettled < allowed || af::maxPenetration(contacts.points(), bodies) <= allowed)
+            return;
     } else {
         if (stayedApart) {
             collision.findContactsAgain(poses, 0, manifolds);
@@ -316,9 +322,9 @@ void World::State::settleNewContacts() {
         settled.poses = poses;
         settled.manifolds = manifolds;
         settled.points.assign(contacts.points().begin(), contacts.points().end());
+        settled.penetration = af::maxPenetration(contacts.points(), bodies);
+        if (settled.penetration <= allowed) return;
     }
-    const Real allowed = settings.contact.slop + kPenetrationTolerance;
-    if (af::maxPenetration(contacts.points(), bodies) <= allowed) return;
     forEachIsland(false, [&](Island& island, IslandContext& shared) {
         if (island.maxPenetration() <= allowed) return false;
         island.project(shared);
