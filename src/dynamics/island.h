@@ -124,9 +124,11 @@ private:
     std::vector<ContactPoint> points_;
     // The points the velocity solve writes rows for, and those it leaves out (see
     // leaveOutFarPoints) with where their pA and pB are, which the solves do not move;
-    // writeRows takes nearPoints_ instead of points_ while nearPointsOnly_.
+    // writeRows takes nearPoints_ instead of points_ while nearPointsOnly_. A far point is named
+    // by its place in points_, not copied (resting bench ragdoll, 34 far points a step:
+    // leaveOutFarPoints 7.2k -> 6.1k instructions, bringBackClosingPoints 3.3k -> 3.5k).
     struct FarPoint {
-        ContactPoint point;
+        std::size_t point;  // in points_
         Vec3 onA, onB;
     };
     std::vector<ContactPoint> nearPoints_;

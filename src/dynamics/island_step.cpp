@@ -93,8 +93,9 @@ void Island::leaveOutFarPoints(Real dt, const IslandContext& context) {
     nearPointsOnly_ = false;
     if (!restedLastStep_) return;
     const ContactSettings& contact = context.settings.contact;
-    for (const ContactPoint& p : points_) {
-        const FarPoint at{p, contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyA), p.localA),
+    for (std::size_t k = 0; k < points_.size(); ++k) {
+        const ContactPoint& p = points_[k];
+        const FarPoint at{k, contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyA), p.localA),
                           contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyB), p.localB)};
         const Real gap = contact.slop + p.normal.dot(at.onA - at.onB);  // slop − currentDepth, bit for bit
         const bool bounces = p.restitution > 0 && -p.approachVelocity > contact.restitutionThreshold;
@@ -120,7 +121,7 @@ bool Island::bringBackClosingPoints(Real dt, const IslandContext& context) {
     const Real slop = context.settings.contact.slop;
     const std::size_t before = farPoints_.size();
     const auto closing = [&](const FarPoint& far) {
-        const ContactPoint& p = far.point;
+        const ContactPoint& p = points_[far.point];
         const RigidBody* a = contact_detail::bodyOrNull(bodies_, p.bodyA);
         const RigidBody* b = contact_detail::bodyOrNull(bodies_, p.bodyB);
         Vec3 velocity = Vec3::Zero();
