@@ -130,7 +130,12 @@ private:
     struct FarPoint {
         std::size_t point;  // in points_
         Vec3 onA, onB;
+        Real gap = 0;  // slop + n·(pA − pB)
     };
+    struct BodySpeed {
+        Real linear, angular;  // |v|, |ω|
+    };
+    std::vector<BodySpeed> bodySpeeds_;  // scratch of bringBackClosingPoints
     std::vector<ContactPoint> nearPoints_;
     std::vector<FarPoint> farPoints_;
     bool nearPointsOnly_ = false;
