@@ -99,6 +99,7 @@ private:
     // jointErrorsAtPoses: jointErrors_ are already measured at the bodies' current poses.
     void projectPositions(IslandContext& context, bool jointErrorsAtPoses);
     bool moveWhileImproving(Real& violation, IslandContext& context);
+    void writeNormalsOnly();
     Real violationAtPoses(IslandContext& context);
     LcpStatus solvePositions();
     bool solvePositionsWithTree(IslandContext& context, Real violation);
@@ -126,7 +127,8 @@ private:
     // leaveOutFarPoints) with where their pA and pB are, which the solves do not move;
     // writeRows takes nearPoints_ instead of points_ while nearPointsOnly_. A far point is named
     // by its place in points_, not copied (resting bench ragdoll, 34 far points a step:
-    // leaveOutFarPoints 7.2k -> 6.1k instructions, bringBackClosingPoints 3.3k -> 3.5k).
+    // leaveOutFarPoints 7.2k -> 6.1k instructions, bringBackClosingPoints 3.3k -> 3.5k). The
+    // projection puts its frictionless copies of points_ there (writeNormalsOnly).
     struct FarPoint {
         std::size_t point;  // in points_
         Vec3 onA, onB;
