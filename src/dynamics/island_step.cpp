@@ -411,7 +411,7 @@ void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
         }
         ++context.report.projectionPasses;
         holdFrictionAtZero(rows_, ranges_);
-        system_.buildResponses(rows_, bodies_);
+        system_.buildResponses(rows_, bodies_, rowInertia_);
         if (large(context)) {
             system_.setPositionRhs(rows_);
             std::span<Real> x = system_.solution();
