@@ -170,6 +170,7 @@ private:
     JointRowSettings restSettings_;
     bool restRowsHeld_ = false;
     bool restedLastStep_ = false;  // the last step neither moved by SHAKE nor projected
+    bool projectedLastStep_ = false;  // the last projection made a pass (see projectPositions)
     RowSystem system_;
     LcpExactSolver exact_;
     LcpExactSolver exactPosition_;
