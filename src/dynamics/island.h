@@ -195,6 +195,7 @@ private:
     };
     std::vector<HeldRow> leftOut_;
     std::vector<Vec3> shiftLinear_, shiftAngular_;
+    bool shiftsOfSolution_ = false;  // the shifts are M⁻¹Jᵀ of this pass's system_.solution()
     WarmStartCache velocityCache_;
     WarmStartCache positionCache_;  // the last position pass of this island (this step or before)
     std::vector<Real> frozenLo_, frozenHi_, pgsAnswer_;

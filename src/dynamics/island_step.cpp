@@ -359,11 +359,13 @@ bool Island::solvePositionsWithTree(IslandContext& context, Real violation) {
     std::copy(lambda.begin(), lambda.end(), system_.solution().begin());
     statesFromImpulses(context);
     positionCache_.remember(rowKeys_, system_.states(), system_.solution());
+    shiftsOfSolution_ = true;
     return true;
 }
 
 // The rows left out that the tree's answer would violate (w = C + J M⁻¹Jᵀλ < 0, through the
-// responses in system_) get their bounds back; returns whether there were any.
+// responses in system_) get their bounds back; returns whether there were any. The move M⁻¹Jᵀλ
+// it sums is the one moveWhileImproving first tries, bit for bit (same rows, same order).
 bool Island::putBackViolated() {
     shiftLinear_.resize(bodies_.size());
     shiftAngular_.resize(bodies_.size());
@@ -423,6 +425,7 @@ void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
         ++context.report.projectionPasses;
         holdFrictionAtZero(rows_, ranges_);
         system_.buildResponses(rows_, bodies_, rowInertia_);
+        shiftsOfSolution_ = false;
         if (large(context)) {
             system_.setPositionRhs(rows_);
             std::span<Real> x = system_.solution();
@@ -469,7 +472,11 @@ bool Island::moveWhileImproving(Real& violation, IslandContext& context) {
     beforeProjection_.assign(bodies_.begin(), bodies_.end());
     std::span<Real> x = system_.solution();
     for (int attempt = 0; attempt <= kProjectionHalvings; ++attempt) {
-        system_.applyDisplacements(bodies_);
+        if (attempt == 0 && shiftsOfSolution_) {
+            for (std::size_t k = 0; k < bodies_.size(); ++k) displaceBody(bodies_[k], shiftLinear_[k], shiftAngular_[k]);
+        } else {
+            system_.applyDisplacements(bodies_);
+        }
         const Real after = violationAtPoses(context);
         if (after < violation) {
             violation = after;
