@@ -348,7 +348,7 @@ bool Island::solvePositionsWithTree(IslandContext& context, Real violation) {
     bool solved = true;
     do {
         tree_.factor(rows_, ranges_, bodies_, TreeProblems::PositionOnly, rowKeys_);
-        solved = tree_.solvePosition(rows_).status == LcpStatus::Solved;
+        solved = tree_.solvePositionImpulses(rows_).status == LcpStatus::Solved;
     } while (solved && putBackViolated());
     for (const HeldRow& held : leftOut_) rows_[held.row].hi = held.hi;
     if (!solved) {

@@ -70,7 +70,8 @@ struct TreeSolver::Impl {
                   std::span<const std::uint64_t> rowKeys);
     // guessStates and guessImpulses (one per row, or empty) start the auxiliary LCP instead of
     // `start`, which is updated either way.
-    TreeSolveResult solve(const ConstraintRows& rows, WarmStart& start, bool position,
+    // sumPerBody: Σ Jᵀλ per body for applyImpulses and applyDisplacements.
+    TreeSolveResult solve(const ConstraintRows& rows, WarmStart& start, bool position, bool sumPerBody,
                           std::span<const LcpRowState> guessStates = {}, std::span<const Real> guessImpulses = {});
     bool setBounds(const ConstraintRows& rows, bool position);
     void warmStates(const ConstraintRows& rows, const WarmStart& start);
@@ -168,7 +169,7 @@ TreeSolveResult TreeSolver::solveVelocity(const ConstraintRows& rows, std::span<
     Impl& s = *impl_;
     s.b.resize(rows.size());
     for (std::size_t i = 0; i < rows.size(); ++i) s.b[i] = rows[i].target - rowVelocity(rows[i], bodies);
-    return s.solve(rows, s.velocityStart, false);
+    return s.solve(rows, s.velocityStart, false, true);
 }
 
 TreeSolveResult TreeSolver::solveVelocity(const ConstraintRows& rows, std::span<const RigidBody> bodies,
@@ -178,14 +179,21 @@ TreeSolveResult TreeSolver::solveVelocity(const ConstraintRows& rows, std::span<
     Impl& s = *impl_;
     s.b.resize(rows.size());
     for (std::size_t i = 0; i < rows.size(); ++i) s.b[i] = rows[i].target - rowVelocity(rows[i], bodies);
-    return s.solve(rows, s.velocityStart, false, guessStates, guessImpulses);
+    return s.solve(rows, s.velocityStart, false, true, guessStates, guessImpulses);
 }
 
 TreeSolveResult TreeSolver::solvePosition(const ConstraintRows& rows) {
     Impl& s = *impl_;
     s.b.resize(rows.size());
     for (std::size_t i = 0; i < rows.size(); ++i) s.b[i] = -rows[i].error;
-    return s.solve(rows, s.positionStart, true);
+    return s.solve(rows, s.positionStart, true, true);
+}
+
+TreeSolveResult TreeSolver::solvePositionImpulses(const ConstraintRows& rows) {
+    Impl& s = *impl_;
+    s.b.resize(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) s.b[i] = -rows[i].error;
+    return s.solve(rows, s.positionStart, true, false);
 }
 
 // Takes each auxiliary row's state from the last solve's row with the same identity and bodies.
@@ -245,11 +253,11 @@ void TreeSolver::Impl::solvePrimary() {
     tree.backward(z, solution);
 }
 
-TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& start, bool position,
+TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& start, bool position, bool sumPerBody,
                                         std::span<const LcpRowState> guessStates, std::span<const Real> guessImpulses) {
     TreeSolveResult result;
     lambda.assign(rows.size(), 0);
-    bodyImpulse.assign(forest.nodeOfBody.size(), Vec6::Zero());
+    bodyImpulse.assign(sumPerBody ? forest.nodeOfBody.size() : 0, Vec6::Zero());
     if (!valid || rows.size() != auxIndex.size() || (!position && !withFriction) || !setBounds(rows, position)) {
         result.status = LcpStatus::InvalidInput;
         return result;
@@ -311,7 +319,7 @@ TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& s
     for (std::size_t i = 0; i < nodes; ++i)
         for (int q = 0; q < nodeRows[i]; ++q) lambda[static_cast<std::size_t>(nodeFirst[i] + q)] = -solution[i](q);
     for (std::size_t k = 0; k < n; ++k) lambda[static_cast<std::size_t>(auxRows[k])] = x[k];
-    accumulateImpulses(rows);
+    if (sumPerBody) accumulateImpulses(rows);
     return result;
 }
 

@@ -208,6 +208,34 @@ TEST(TreeSolverExact, ImpulsesAndDisplacementsMoveBodiesAsTheDensePathDoes) {
     }
 }
 
+// The solve for a caller that moves the bodies itself gives the same displacements, bit for
+// bit, and leaves the bodies where they are if asked to move them.
+TEST(TreeSolverExact, PositionImpulsesAloneAreThoseOfTheFullPositionSolve) {
+    Scene scene(test::hungHumanoid());
+    spin(scene, 13, 6);
+    TreeSolver full, impulsesOnly;
+    full.setStructure(scene.bodies, scene.joints);
+    impulsesOnly.setStructure(scene.bodies, scene.joints);
+    for (int i = 0; i < 40; ++i) step(scene, full);
+    scene.write();
+    full.resetWarmStart();  // both start cold
+    full.factor(scene.rows, scene.ranges, scene.bodies, TreeProblems::PositionOnly);
+    impulsesOnly.factor(scene.rows, scene.ranges, scene.bodies, TreeProblems::PositionOnly);
+    ASSERT_EQ(full.solvePosition(scene.rows).status, LcpStatus::Solved);
+    ASSERT_EQ(impulsesOnly.solvePositionImpulses(scene.rows).status, LcpStatus::Solved);
+    const std::span<const Real> a = full.impulses(), b = impulsesOnly.impulses();
+    ASSERT_EQ(a.size(), b.size());
+    Real largest = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i], b[i]);
+        largest = std::max(largest, std::abs(a[i]));
+    }
+    EXPECT_GT(largest, 0);
+    std::vector<RigidBody> unmoved = scene.bodies;
+    impulsesOnly.applyDisplacements(unmoved);
+    for (std::size_t k = 0; k < unmoved.size(); ++k) EXPECT_EQ(unmoved[k].position, scene.bodies[k].position);
+}
+
 // Steps of the shaken humanoid: the velocity solve warm-started from the step before pivots
 // rarely (a few times where a limit engages or a joint starts to slip), where a cold solve of
 // the same rows pivots through every row it finds at a bound.

@@ -99,6 +99,9 @@ public:
     /// The position problem: b_i = −error_i; friction rows (coupled rows and joint friction rows)
     /// are held at 0.
     TreeSolveResult solvePosition(const ConstraintRows& rows);
+    /// The same for a caller that moves the bodies itself from impulses(): applyImpulses and
+    /// applyDisplacements move nothing after it (the sums per body they read are not made).
+    TreeSolveResult solvePositionImpulses(const ConstraintRows& rows);
 
     /// λ of every row of the last solve, in the rows' order.
     std::span<const Real> impulses() const;
