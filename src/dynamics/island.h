@@ -4,9 +4,10 @@
 // renumbered to them), so that the cost of a step grows with each island's size rather than
 // with the whole world's, and two figures that do not touch never share a dense system.
 //
-// The step of an island (island_step.cpp, SHAKE's part in island_shake.cpp) is the world's step
-// after velocity integration: rows, velocity solve, position integration, SHAKE, position
-// projection. Its order and reasons are those of af/dynamics/world.h.
+// The step of an island (island_step.cpp, SHAKE's part in island_shake.cpp, the projection in
+// island_project.cpp) is the world's step after velocity integration: rows, velocity solve,
+// position integration, SHAKE, position projection. Its order and reasons are those of
+// af/dynamics/world.h.
 
 #include "af/dynamics/lcp.h"
 #include "af/dynamics/tree_solver.h"
