@@ -61,17 +61,23 @@ void SparseLcpSolver::velocityChange(std::span<const ConstraintRow> rows, std::s
                                      std::span<const Real> x, std::span<const std::uint8_t> use) {
     std::fill(linear_.begin(), linear_.end(), Vec3::Zero());
     std::fill(angular_.begin(), angular_.end(), Vec3::Zero());
+    // The sums' storage and each row's x and bodies are read once into locals: Eigen's vector
+    // stores may alias anything, so the compiler read them again after every store otherwise.
+    Vec3* const linear = linear_.data();
+    Vec3* const angular = angular_.data();
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (x[i] == 0 || (!use.empty() && !use[i])) continue;
+        const Real xi = x[i];
+        if (xi == 0 || (!use.empty() && !use[i])) continue;
         const ConstraintRow& r = rows[i];
         const RowResponse& m = responses[i];
-        if (r.bodyA != kWorldBody) {
-            linear_[static_cast<std::size_t>(r.bodyA)] += x[i] * m.linearA;
-            angular_[static_cast<std::size_t>(r.bodyA)] += x[i] * m.angularA;
+        const int a = r.bodyA, b = r.bodyB;
+        if (a != kWorldBody) {
+            linear[a] += xi * m.linearA;
+            angular[a] += xi * m.angularA;
         }
-        if (r.bodyB != kWorldBody) {
-            linear_[static_cast<std::size_t>(r.bodyB)] += x[i] * m.linearB;
-            angular_[static_cast<std::size_t>(r.bodyB)] += x[i] * m.angularB;
+        if (b != kWorldBody) {
+            linear[b] += xi * m.linearB;
+            angular[b] += xi * m.angularB;
         }
     }
 }
