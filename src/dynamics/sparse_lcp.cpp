@@ -200,13 +200,6 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     return result;
 }
 
-// w of every row at x and the bounds at x, into w_, lo_ and hi_.
-void SparseLcpSolver::evaluate(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
-                               const LcpProblem& problem, std::span<const Real> x) {
-    measureW(rows, responses, problem, x);
-    bounds(problem, x);
-}
-
 // w of every row at x into w_, with the velocity change of x in linear_ and angular_.
 void SparseLcpSolver::measureW(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                                const LcpProblem& problem, std::span<const Real> x) {
@@ -260,12 +253,13 @@ bool SparseLcpSolver::guessHolds(std::span<const ConstraintRow> rows, std::span<
 int SparseLcpSolver::check(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                            const LcpProblem& problem, std::span<const Real> x, std::span<const LcpRowState> states,
                            Real wTolerance, Real tolerance) {
-    evaluate(rows, responses, problem, x);
+    measureW(rows, responses, problem, x);
     int wrong = 0;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        const Real atBound = xTolerance(i, tolerance);
+        bound(problem, x, i);
         LcpRowState want = states[i];
         if (states[i] == LcpRowState::Free) {
+            const Real atBound = xTolerance(i, tolerance);
             if (x[i] < lo_[i] - atBound) want = LcpRowState::AtLower;
             if (x[i] > hi_[i] + atBound) want = LcpRowState::AtUpper;
         } else if (states[i] == LcpRowState::AtLower && lo_[i] != hi_[i] && w_[i] < -wTolerance) {

@@ -69,8 +69,6 @@ private:
     Real boundValue(const LcpProblem& problem, std::span<const Real> x, std::span<const LcpRowState> states,
                     std::size_t i) const;
     Real slidingSlope(const LcpProblem& problem, std::span<const LcpRowState> states, std::size_t i) const;
-    void evaluate(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
-                  std::span<const Real> x);
     Real xTolerance(std::size_t i, Real tolerance) const;
     bool guessHolds(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
                     std::span<const Real> x, std::span<const LcpRowState> states, Real wTolerance, Real tolerance);
