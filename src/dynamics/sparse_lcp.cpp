@@ -119,6 +119,7 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
     bool guessComplete = true;
     for (std::size_t i = 0; i < n; ++i) {
         bScale = std::max(bScale, std::abs(problem.b[i]));
+        if (states[i] == LcpRowState::Free) continue;  // known, and what an unbounded row gets anyway
         const bool unknown = states[i] == LcpRowState::Unknown || states[i] == LcpRowState::Failed;
         guessComplete = guessComplete && !unknown;
         const bool lower = std::isfinite(problem.lo[i]) || source(problem, i) >= 0;
@@ -133,8 +134,9 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
             states[i] = (lower && upper) || closing ? LcpRowState::Free : lower ? LcpRowState::AtLower : LcpRowState::AtUpper;
         }
     }
-    // A new friction row sticks when its normal pushes; otherwise its box is empty.
-    for (std::size_t i = 0; i < n; ++i) {
+    // A new friction row sticks when its normal pushes; otherwise its box is empty. (A complete
+    // guess has no new rows.)
+    for (std::size_t i = 0; i < n && !guessComplete; ++i) {
         if (states[i] != LcpRowState::Unknown) continue;
         const bool normalPushes = states[static_cast<std::size_t>(source(problem, i))] == LcpRowState::Free;
         states[i] = normalPushes ? LcpRowState::Free : LcpRowState::AtLower;
