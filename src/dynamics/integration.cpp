@@ -128,25 +128,29 @@ void integrateVelocity(RigidBody& body, const Vec3& gravity, Real dt, const Inte
         if (settings.gyroscopic) {
             const Mat3 r = body.rotation();
             const Vec3 omega = r.transpose() * body.angularVelocity;
-            // The torque acts as an impulse at the start of the step, the free motion follows:
-            // the world angular momentum about the centre of mass changes by exactly dt·τ.
-            // Most bodies carry no torque (a ragdoll's, but for springs): adding a zero impulse
-            // changes nothing, and skipping it saved 0.8k of a resting bench ragdoll's 209k
-            // instructions per step.
-            Vec3 momentum = body.inertia * omega;
-            Vec3 guess = omega;
             const bool torqued = !body.torque.isZero(0);
-            if (torqued) {
-                const Vec3 torqueImpulse = dt * (r.transpose() * body.torque);
-                momentum += torqueImpulse;
-                guess += body.inverseInertia * torqueImpulse;
-            }
             // Without torque the guess ω leaves the residual |Iω − exp(−dt[ω]×) Iω| ≤ dt|ω|·|Iω|
             // (a turn by dt|ω| moves a vector by at most that fraction of it): within Newton's
             // tolerance when dt|ω| is, and Newton keeps it. A resting bench ragdoll's slowest
-            // bodies: 2.4k of its 208k instructions per step not spent to find that out.
-            const bool guessStands = !torqued && dt * omega.norm() <= kNewtonTolerance;
-            body.angularVelocity = r * (guessStands ? omega : solveGyroscopic(body.inertia, momentum, guess, dt));
+            // bodies: 2.4k of its 208k instructions per step not spent to find that out, and
+            // their momentum is not formed either.
+            if (!torqued && dt * omega.norm() <= kNewtonTolerance) {
+                body.angularVelocity = r * omega;
+            } else {
+                // The torque acts as an impulse at the start of the step, the free motion
+                // follows: the world angular momentum about the centre of mass changes by
+                // exactly dt·τ. Most bodies carry no torque (a ragdoll's, but for springs):
+                // adding a zero impulse changes nothing, and skipping it saved 0.8k of a resting
+                // bench ragdoll's 209k instructions per step.
+                Vec3 momentum = body.inertia * omega;
+                Vec3 guess = omega;
+                if (torqued) {
+                    const Vec3 torqueImpulse = dt * (r.transpose() * body.torque);
+                    momentum += torqueImpulse;
+                    guess += body.inverseInertia * torqueImpulse;
+                }
+                body.angularVelocity = r * solveGyroscopic(body.inertia, momentum, guess, dt);
+            }
         } else {
             body.angularVelocity += dt * (body.inverseInertiaWorld() * body.torque);
         }
