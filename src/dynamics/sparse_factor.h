@@ -27,6 +27,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace af {
@@ -120,6 +121,7 @@ private:
         int group, local;
     };
     std::vector<Packed> packed_;  // diagonal_: each free row's own A_rr, for the pivot test
+    std::vector<std::pair<std::uint64_t, int>> packOrder_;  // assemble(): (group, local) and row
     mutable std::vector<Real> work_;
 };
 
