@@ -155,7 +155,10 @@ void SparseRowFactor::order(const std::vector<std::uint8_t>& active) {
             for (std::uint64_t bits = n[w] & remaining_[w]; bits != 0; bits &= bits - 1) {
                 ++degree;
                 const std::uint64_t* m = row(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
-                for (std::size_t v = 0; v < words; ++v) links += static_cast<std::size_t>(__builtin_popcountll(m[v] & n[v] & remaining_[v]));
+                // Bit by bit: a word holds a few links, and without -mpopcnt the builtin is a
+                // call into libgcc (single 600 steps 0.7M instructions, grid4 200 steps 20M).
+                for (std::size_t v = 0; v < words; ++v)
+                    for (std::uint64_t both = m[v] & n[v] & remaining_[v]; both != 0; both &= both - 1) ++links;
             }
         return (degree * (degree - 1) - links) / 2;
     };
