@@ -87,7 +87,7 @@ const WorldSettings& World::settings() const { return state_->settings; }
 Real World::time() const { return state_->time; }
 const StepReport& World::lastStep() const { return state_->report; }
 int World::solverFailures() const { return state_->failures; }
-const std::vector<BodyContact>& World::contacts() const { return state_->manifolds; }
+const std::vector<BodyContact>& World::contacts() const { return state_->found(); }
 Real World::maxPenetration() const { return af::maxPenetration(state_->contacts.points(), state_->bodies); }
 
 Real World::maxJointError() const {

@@ -51,7 +51,7 @@ void World::State::putToRest(int figure) {
 // A resting figure touched by an awake body wakes: something moved against it.
 bool World::State::wakeTouched() {
     bool woke = false;
-    for (const BodyContact& c : manifolds) {
+    for (const BodyContact& c : found()) {
         if (c.bodyB == kStaticWorld || awake(c.bodyA) == awake(c.bodyB)) continue;
         wake(bodyFigure[static_cast<std::size_t>(awake(c.bodyA) ? c.bodyB : c.bodyA)]);
         woke = true;
@@ -89,7 +89,7 @@ void World::State::testRest(Real dt) {
 
     group.resize(figures.size());
     std::iota(group.begin(), group.end(), 0);
-    for (const BodyContact& c : manifolds) {
+    for (const BodyContact& c : found()) {
         if (c.bodyB == kStaticWorld) continue;
         const int fa = bodyFigure[static_cast<std::size_t>(c.bodyA)], fb = bodyFigure[static_cast<std::size_t>(c.bodyB)];
         if (fa >= 0 && fb >= 0) group[static_cast<std::size_t>(findRoot(group, fa))] = findRoot(group, fb);

@@ -29,7 +29,11 @@ struct World::State {
     std::vector<Real> reach;  // how far a body's turn carries its surface in the step
     std::vector<Vec3> moves;  // how far a body's velocity carries it in the step
     std::vector<RigidPose> poses;
+    // This step's manifolds: kept in `manifolds`, or, when a step keeps the last search's or the
+    // last settle's whole, read there rather than copied (resting bench ragdoll, every step).
     std::vector<BodyContact> manifolds;
+    enum class ManifoldsOf : std::uint8_t { Own, Search, Settled };
+    ManifoldsOf manifoldsOf = ManifoldsOf::Own;
     ContactSet contacts;
     // The last search at a step's start and what it found, kept while it covers what a new one
     // would find (see findContacts).
@@ -83,6 +87,10 @@ struct World::State {
     void addBody(const RigidBody& body, const Polytope& shape, const CollisionFilter& filter,
                  const BodyMaterial& material, int figure);
 
+    const std::vector<BodyContact>& found() const {
+        return manifoldsOf == ManifoldsOf::Search ? search.manifolds
+               : manifoldsOf == ManifoldsOf::Settled ? settled.manifolds : manifolds;
+    }
     bool awake(int body) const { return body == kWorldBody || bodyAwake[static_cast<std::size_t>(body)] != 0; }
     void wake(int figure);
     void refreshAwake();

@@ -66,6 +66,7 @@ void World::State::findContacts(Real dt) {
     searchKept = false;
     if (searchAgain(dt) && !wakeTouched()) return;
     searchKept = false;
+    manifoldsOf = ManifoldsOf::Own;
     do {
         findContactsOnce(dt, bodyAwake, manifolds);
     } while (wakeTouched());
@@ -120,6 +121,7 @@ bool World::State::searchAgain(Real dt) {
     const auto order = [](const BodyContact& c) {
         return c.bodyB == kStaticWorld ? std::tuple(1, c.bodyA, c.staticShape) : std::tuple(0, c.bodyA, c.bodyB);
     };
+    manifoldsOf = ManifoldsOf::Own;
     manifolds.clear();
     contacts.clear();
     std::size_t f = 0;
@@ -150,7 +152,7 @@ bool World::State::searchAgain(Real dt) {
 // one keep for all points. The merge above, with nothing to merge, took them manifold by
 // manifold (resting bench ragdoll: searchAgain 10.5k -> 9.1k instructions a step).
 void World::State::keepLastSearch() {
-    manifolds = search.manifolds;
+    manifoldsOf = ManifoldsOf::Search;
     contacts.clear();
     contacts.keep(search.points, bodies);
     searchKept = true;
@@ -301,7 +303,7 @@ void World::State::settleNewContacts() {
         // positions read them (the projection below, maxPenetration): the next step's search
         // takes their approach velocities anew before its velocity solve (resting bench ragdoll:
         // 1.4k of a step's 212k instructions to take them here).
-        manifolds = settled.manifolds;
+        manifoldsOf = ManifoldsOf::Settled;
         contacts.clear();
         contacts.keepForPositions(settled.points);
         // A point's depth −n·(pA − pB) changes by at most its two bodies' surface moves, each
@@ -311,16 +313,17 @@ void World::State::settleNewContacts() {
             return;
     } else {
         if (stayedApart) {
-            collision.findContactsAgain(poses, 0, manifolds);
+            if (manifoldsOf != ManifoldsOf::Settled) settled.manifolds = found();
+            collision.findContactsAgain(poses, 0, settled.manifolds);
         } else {
             std::fill(reach.begin(), reach.end(), Real(0));
             std::fill(moves.begin(), moves.end(), Vec3::Zero());
-            collision.findContacts(poses, moves, reach, 0, bodyAwake, manifolds);
+            collision.findContacts(poses, moves, reach, 0, bodyAwake, settled.manifolds);
         }
-        contacts.gather(manifolds, bodies, materials);
+        manifoldsOf = ManifoldsOf::Settled;
+        contacts.gather(settled.manifolds, bodies, materials);
         settled.known = true;
         settled.poses = poses;
-        settled.manifolds = manifolds;
         settled.points.assign(contacts.points().begin(), contacts.points().end());
         settled.penetration = af::maxPenetration(contacts.points(), bodies);
         if (settled.penetration <= allowed) return;
