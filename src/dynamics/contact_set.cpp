@@ -78,7 +78,10 @@ void ContactSet::keep(std::span<const ContactPoint> points, std::span<const Rigi
         ContactPoint& p = points_[k];
         const RigidBody& a = bodies[static_cast<std::size_t>(p.bodyA)];
         const RigidBody* b = bodyOrNull(bodies, p.bodyB);
-        const Vec3 at = (toWorld(&a, p.localA) + toWorld(b, p.localB)) / 2;
+        p.placed = true;
+        p.onA = toWorld(&a, p.localA);
+        p.onB = toWorld(b, p.localB);
+        const Vec3 at = (p.onA + p.onB) / 2;
         p.approachVelocity = b ? p.normal.dot(a.velocityAt(at) - b->velocityAt(at)) : p.normal.dot(a.velocityAt(at));
     }
 }

@@ -37,6 +37,11 @@ struct ContactPoint {
     std::optional<Vec3> frictionDirection;  // A's, body frame
     std::uint64_t key = 0;                  // the same point in the next step has the same key
     Real approachVelocity = 0;              // n·(v_A − v_B) at the point when gathered
+    // pA and pB in the world where ContactSet::keep took the approach velocity (placed), which a
+    // step's start reads again before the bodies move (resting bench ragdoll, every point a step).
+    bool placed = false;
+    Vec3 onA = Vec3::Zero();
+    Vec3 onB = Vec3::Zero();
 };
 
 namespace contact_detail {

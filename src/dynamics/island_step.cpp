@@ -94,8 +94,10 @@ void Island::leaveOutFarPoints(Real dt, const IslandContext& context) {
     const ContactSettings& contact = context.settings.contact;
     for (std::size_t k = 0; k < points_.size(); ++k) {
         const ContactPoint& p = points_[k];
-        FarPoint at{k, contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyA), p.localA),
-                    contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyB), p.localB)};
+        // A kept point was placed at the step's start poses, which the bodies still have.
+        FarPoint at = p.placed ? FarPoint{k, p.onA, p.onB}
+                               : FarPoint{k, contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyA), p.localA),
+                                          contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyB), p.localB)};
         at.gap = contact.slop + p.normal.dot(at.onA - at.onB);  // slop − currentDepth, bit for bit
         const bool bounces = p.restitution > 0 && -p.approachVelocity > contact.restitutionThreshold;
         const bool far = !bounces && at.gap > kFarGap * contact.slop &&
