@@ -169,7 +169,7 @@ int writeContactRows(const Contact& c, std::span<const RigidBody> bodies, std::s
 
 void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
                       std::span<const Mat3> inverseInertiaWorld, const ContactSettings& settings, ConstraintRows& rows,
-                      std::vector<std::uint64_t>& keys) {
+                      std::vector<std::uint64_t>& keys, bool placedHold) {
     using contact_detail::bodyOrNull;
     using contact_detail::toWorld;
     // A manifold's points share its normal, and so their tangents: computed once per run of them.
@@ -177,8 +177,9 @@ void writeContactRows(std::span<const ContactPoint> points, std::span<const Rigi
     Vec3 normalOfTangents = Vec3::Zero();  // no unit normal equals it
     for (const ContactPoint& p : points) {
         const RigidBody* a = bodyOrNull(bodies, p.bodyA);
-        const Vec3 onA = toWorld(a, p.localA);
-        const Vec3 onB = toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
+        const bool placed = placedHold && p.placed;
+        const Vec3 onA = placed ? p.onA : toWorld(a, p.localA);
+        const Vec3 onB = placed ? p.onB : toWorld(bodyOrNull(bodies, p.bodyB), p.localB);
         ContactView c;
         c.bodyA = p.bodyA;
         c.bodyB = p.bodyB;

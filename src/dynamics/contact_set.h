@@ -62,10 +62,11 @@ Real currentDepth(const ContactPoint& point, std::span<const RigidBody> bodies);
 // Appends every point's rows at the bodies' current poses, and one key per row (the point's key
 // and the row's place). The rows push A at pA and B at pB, so that J is exactly the derivative of
 // the normal row's C = n·(pA − pB) for the step's n (contact_rows.cpp). inverseInertiaWorld: each
-// body's RigidBody::inverseInertiaWorld, indexed as bodies.
+// body's RigidBody::inverseInertiaWorld, indexed as bodies. placedHold: the bodies are where the
+// points were placed (ContactPoint::placed), whose pA and pB then serve as they are.
 void writeContactRows(std::span<const ContactPoint> points, std::span<const RigidBody> bodies,
                       std::span<const Mat3> inverseInertiaWorld, const ContactSettings& settings, ConstraintRows& rows,
-                      std::vector<std::uint64_t>& keys);
+                      std::vector<std::uint64_t>& keys, bool placedHold = false);
 // The deepest penetration of the points at the bodies' current poses (0 when none touches).
 Real maxPenetration(std::span<const ContactPoint> points, std::span<const RigidBody> bodies);
 

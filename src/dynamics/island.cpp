@@ -77,7 +77,7 @@ void Island::applyImpulses() {
 
 // The extra source sees the world's bodies (with this island's current poses written back);
 // its rows that touch this island are kept, renumbered.
-void Island::writeRows(IslandContext& context, bool reuseRestRows) {
+void Island::writeRows(IslandContext& context, bool reuseRestRows, bool atStepStart) {
     rows_.clear();
     ranges_.clear();
     rowKeys_.clear();
@@ -96,7 +96,8 @@ void Island::writeRows(IslandContext& context, bool reuseRestRows) {
         for (int r = 0; r < range.limitRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(64 + r));
         for (int r = 0; r < range.frictionRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(128 + r));
     }
-    writeContactRows(nearPointsOnly_ ? nearPoints_ : points_, bodies_, rowInertia_, context.settings.contact, rows_, rowKeys_);
+    writeContactRows(nearPointsOnly_ ? nearPoints_ : points_, bodies_, rowInertia_, context.settings.contact, rows_, rowKeys_,
+                     atStepStart);
     if (!context.extraRows) return;
     for (std::size_t i = 0; i < bodyIds_.size(); ++i)
         context.worldBodies[static_cast<std::size_t>(bodyIds_[i])] = bodies_[i];

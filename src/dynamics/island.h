@@ -66,7 +66,8 @@ public:
 private:
     // reuseRestRows: take the joint rows measureJointErrors wrote at the end of the last step if
     // they still hold (a step's start).
-    void writeRows(IslandContext& context, bool reuseRestRows = false);
+    // atStepStart: the bodies are at the poses the step's points were placed at (the velocity solves).
+    void writeRows(IslandContext& context, bool reuseRestRows = false, bool atStepStart = false);
     // The joint rows' errors at the bodies' poses (jointErrors_, errorRanges_). Without the rows,
     // unless the last step ended at rest: then this step likely does too, and the next one
     // starts from these poses, so the joint rows are written whole (restRows_) for it to take.

@@ -63,7 +63,7 @@ void Island::project(IslandContext& context) { projectPositions(context, false);
 // Returns whether the solve succeeded; the step counts a failure only of its last solve (one
 // that left out a point it needed is solved again).
 bool Island::solveVelocityRows(Real dt, IslandContext& context, bool reuseRestRows) {
-    writeRows(context, reuseRestRows);
+    writeRows(context, reuseRestRows, true);
     // The tree solver and PGS read the rows themselves: A is built only for the dense solve.
     system_.buildResponses(rows_, bodies_, rowInertia_);
     if (context.settings.solver == SolverKind::Exact && !large(context)) system_.buildMatrix(rows_);
