@@ -228,11 +228,15 @@ void LcpExactSolver::Impl::removeFromClamped(int p, Slot to) {
         std::copy_n(rowP, sn, scratch.data());
         std::memmove(rowP, rowP + sn, sizeof(Real) * moved * sn);
         std::copy_n(scratch.data(), sn, a.data() + (nC - 1) * sn);
+        // Locals: the memmove call would make the compiler reload nC and a's storage per row.
+        Real* const       rows = a.data();
+        const std::size_t first = static_cast<std::size_t>(p);
+        const std::size_t last = static_cast<std::size_t>(nC - 1);
         for (std::size_t r = 0; r < sn; ++r) {
-            Real* const row = a.data() + r * sn;
-            const Real  entry = row[p];
-            std::memmove(row + p, row + p + 1, sizeof(Real) * moved);
-            row[nC - 1] = entry;
+            Real* const row = rows + r * sn;
+            const Real  entry = row[first];
+            std::memmove(row + first, row + first + 1, sizeof(Real) * moved);
+            row[last] = entry;
         }
         auto rot = [&](auto& v) { std::rotate(v.begin() + p, v.begin() + p + 1, v.begin() + nC); };
         rot(x);
