@@ -134,11 +134,20 @@ void LcpExactSolver::Impl::load(const LcpProblem& problem, std::span<const LcpRo
             x[p] = clampReal(0, lo[p], hi[p]);
         }
 
-        // Row p of the permuted matrix, with CFM on the diagonal.
+        // Row p of the permuted matrix, with CFM on the diagonal. The gather is most of a load's
+        // cost and GCC does not unroll it: four entries per trip halve the loop's overhead.
         const Real* src = problem.a.data() + static_cast<std::size_t>(r) * n;
         Real*       dst = a.data() + static_cast<std::size_t>(p) * n;
-        for (int q = 0; q < n; ++q) {
-            dst[q] = src[perm[q]];
+        const int*  from = perm.data();
+        int         q = 0;
+        for (; q + 4 <= n; q += 4) {
+            dst[q] = src[from[q]];
+            dst[q + 1] = src[from[q + 1]];
+            dst[q + 2] = src[from[q + 2]];
+            dst[q + 3] = src[from[q + 3]];
+        }
+        for (; q < n; ++q) {
+            dst[q] = src[from[q]];
         }
         dst[p] += settings.cfm + (problem.cfm.empty() ? Real(0) : problem.cfm[r]);
         aMax = std::max(aMax, dst[p]);
