@@ -264,9 +264,7 @@ int LcpExactSolver::Impl::checkPattern(bool tieFriction, bool flip) {
         }
         return worst >= 0 && worstSize < kLcpInfinity ? static_cast<int>(pending.size()) : 0;
     }
-    for (const int row : pending) {
-        release(posOf[row]);
-    }
+    releaseAll(pending);
     return static_cast<int>(pending.size());
 }
 

@@ -104,6 +104,7 @@ struct LcpExactSolver::Impl {
     std::vector<Slot>    slot;
     std::vector<std::uint8_t> frozen;  // position → box frozen for the current drive
     lcp::Ldlt            factor;  // of a[C][C]
+    bool                 matrixDeferred = false;  // swaps and rotations leave a to releaseAll
     int                  nC = 0;
     int                  nP = 0;
 
@@ -112,7 +113,7 @@ struct LcpExactSolver::Impl {
     std::vector<Real> tie;                 // per position: c_k of a tied friction row, else 0
     std::vector<int>  linkColumn;          // per position: column of a linked source, or −1
     std::vector<int>  linkSources;         // positions of linked sources
-    std::vector<Real> linkZ;               // capacity²: one solved column per linked source
+    std::vector<Real> linkZ;               // capacity²: one solved column per linked source (releaseAll: A)
     std::vector<Real> linkK;               // capacity²: the small capacitance system
     std::vector<int>  linkPivot;
     std::vector<int>  failed;              // original rows, reported in LcpResult
@@ -139,6 +140,7 @@ struct LcpExactSolver::Impl {
     void removeFromClamped(int p, Slot to);  // factor removal + rotation to position nC
     bool addToClamped(int p, const Real* forwardSolved);  // swap p to nC and append; false: singular
     void release(int p);                    // processed → unprocessed, keeping x in its box
+    void releaseAll(std::span<const int> rows);  // release(posOf[row]) for each original row in turn
     // The current impulses and pattern as a guess in original row order (unprocessed rows: Unknown).
     void saveGuess(std::span<Real> outX, std::span<LcpRowState> outStates) const;
     void finish(const LcpProblem& problem, std::span<Real> outX, std::span<LcpRowState> ioStates,
