@@ -139,6 +139,7 @@ bool LcpExactSolver::Impl::settle(bool stopIfFirstFails, LcpStatus& status, int&
         passes = pass;
         solvePattern(true);
         bool checked = false;  // the last check found nothing wrong with the current x
+        bool found = false;    // the last check's pending rows are those of the current x
         if (pass == 1) {
             // Single principal pivots on the worst row, while the number of wrong rows does not
             // grow: a nearly right warm start is repaired in about one pivot per changed row.
@@ -147,6 +148,7 @@ bool LcpExactSolver::Impl::settle(bool stopIfFirstFails, LcpStatus& status, int&
                 const int wrong = checkPattern(true, true);
                 if (wrong == 0) {
                     checked = pending.empty();
+                    found = true;
                     break;
                 }
                 solvePattern(true);
@@ -156,7 +158,15 @@ bool LcpExactSolver::Impl::settle(bool stopIfFirstFails, LcpStatus& status, int&
                 previous = wrong;
             }
         }
-        int released = checked ? 0 : checkPattern(true, false);
+        // A check that found rows but none to flip changed nothing: its rows are released as
+        // found, not looked for again.
+        int released = 0;
+        if (found && !checked) {
+            releaseAll(pending);
+            released = static_cast<int>(pending.size());
+        } else if (!checked) {
+            released = checkPattern(true, false);
+        }
         if (released == 0 && nP == n) {
             return true;
         }
