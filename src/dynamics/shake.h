@@ -91,6 +91,7 @@ private:
         std::vector<Real> k;             // size × size, row-major; only the pattern is used
     };
     void findStructure();
+    void layOut();
     void orderGroups(int bodies);
     bool simplicial(int group);
     void eliminate(int group);
