@@ -263,14 +263,15 @@ void ShakeCorrection::fillBlock(const Block& block, const ConstraintRows& rows, 
             const RowPart a = partOf(now, onA), b = partOf(now, onB);
             Real* out = &k[static_cast<std::size_t>(p.at.start + r) * n + static_cast<std::size_t>(q.at.start)];
             const RowResponse* m = &responses_[static_cast<std::size_t>(q.first)];
-            for (int c = 0; c < q.size; ++c) {
-                if (onB == Side::None)
-                    out[c] = onA == Side::None ? 0 : a.along(m[c].linearA, m[c].angularA);
-                else if (onA == Side::None)
-                    out[c] = b.along(m[c].linearB, m[c].angularB);
-                else
+            if (onA != Side::None && onB != Side::None)
+                for (int c = 0; c < q.size; ++c)
                     out[c] = a.along(m[c].linearA, m[c].angularA) + b.along(m[c].linearB, m[c].angularB);
-            }
+            else if (onA != Side::None)
+                for (int c = 0; c < q.size; ++c) out[c] = a.along(m[c].linearA, m[c].angularA);
+            else if (onB != Side::None)
+                for (int c = 0; c < q.size; ++c) out[c] = b.along(m[c].linearB, m[c].angularB);
+            else
+                std::fill(out, out + q.size, Real(0));
         }
     };
     for (int e = 0; e < block.groups; ++e) {
