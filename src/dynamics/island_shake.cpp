@@ -4,6 +4,7 @@
 #include "island.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace af {
 
@@ -64,8 +65,10 @@ bool Island::captureDrift(const IslandContext& context) {
         writeJointRowsOnly(context);
         return true;
     }
-    startRows_ = rows_;
-    startRanges_ = ranges_;
+    // writeJointRowsOnly starts rows_ and ranges_ afresh, so their old buffers can hold the
+    // velocity solve's rows instead of a copy of them.
+    std::swap(startRows_, rows_);
+    std::swap(startRanges_, ranges_);
     writeJointRowsOnly(context);
     if (ShakeCorrection::drift(startRows_, startRanges_, rows_, ranges_) <= kShakeTolerance) {
         measureJointErrors(context);
