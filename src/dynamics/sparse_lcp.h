@@ -125,6 +125,7 @@ private:
     std::vector<LcpRowState> coreStates_;
     LcpExactSolver coreSolver_;
     std::vector<int> slidingRows_;
+    std::vector<int> boundRows_, boundFriction_;  // refine(): its rows at a bound
     std::vector<LcpRowState> next_;
     std::vector<Vec3> linear_, angular_;
 };
