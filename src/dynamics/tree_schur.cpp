@@ -59,21 +59,22 @@ void Auxiliary::findPaths(const Forest& forest, int nodes) {
             entryRow_[static_cast<std::size_t>(e)] = static_cast<int>(k);
             pathEntry_[static_cast<std::size_t>(f)] = e;
         }
-    for (std::size_t k = 0; k < n; ++k)
-        for (int f = pathBegin_[k]; f < pathBegin_[k + 1]; ++f) {
-            const int p = forest.nodes[static_cast<std::size_t>(pathNode_[static_cast<std::size_t>(f)])].parent;
-            int up = -1;
-            for (int u = f + 1; p >= 0 && u < pathBegin_[k + 1]; ++u)
-                if (pathNode_[static_cast<std::size_t>(u)] == p) {
-                    up = pathEntry_[static_cast<std::size_t>(u)];
-                    break;
-                }
-            entryUp_[static_cast<std::size_t>(pathEntry_[static_cast<std::size_t>(f)])] = up;
-        }
+    // A path holds the parent of each of its nodes but a root (the walks go up to the roots), and
+    // a node's parent comes after it: read backwards, the parent's entry is already known.
+    // cursor_, done with the counting sort, holds per node the current row's entry there.
     bodyEntry_.assign(2 * n, -1);
-    for (std::size_t k = 0; k < 2 * n; ++k)
-        for (int f = pathBegin_[k / 2]; f < pathBegin_[k / 2 + 1]; ++f)
-            if (pathNode_[static_cast<std::size_t>(f)] == bodyNodes_[k]) bodyEntry_[k] = pathEntry_[static_cast<std::size_t>(f)];
+    cursor_.resize(static_cast<std::size_t>(nodes));
+    for (std::size_t k = 0; k < n; ++k) {
+        for (int f = pathBegin_[k + 1]; f-- > pathBegin_[k];) {
+            const std::size_t node = static_cast<std::size_t>(pathNode_[static_cast<std::size_t>(f)]);
+            const int e = pathEntry_[static_cast<std::size_t>(f)];
+            const int p = forest.nodes[node].parent;
+            entryUp_[static_cast<std::size_t>(e)] = p < 0 ? -1 : cursor_[static_cast<std::size_t>(p)];
+            cursor_[node] = e;
+        }
+        for (std::size_t s = 2 * k; s < 2 * k + 2; ++s)
+            if (bodyNodes_[s] >= 0) bodyEntry_[s] = cursor_[static_cast<std::size_t>(bodyNodes_[s])];
+    }
 }
 
 void Auxiliary::build(const TreeFactor& factor, const Forest& forest, const ConstraintRows& rows,
