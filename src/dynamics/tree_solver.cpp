@@ -110,8 +110,13 @@ void TreeSolver::Impl::classify(const ConstraintRows& rows, std::span<const Join
                                 std::span<const std::uint64_t> rowKeys) {
     const std::size_t n = rows.size();
     constexpr int kUnset = -3;
+    const bool named = rowKeys.size() == n;
     auxIndex.assign(n, kUnset);
-    key.resize(n);
+    if (named) {
+        key.assign(rowKeys.begin(), rowKeys.end());
+    } else {
+        key.resize(n);
+    }
     friction.assign(n, 0);
     nodeFirst.assign(forest.nodes.size(), 0);
     nodeRows.assign(forest.nodes.size(), 0);
@@ -131,7 +136,7 @@ void TreeSolver::Impl::classify(const ConstraintRows& rows, std::span<const Join
                     valid = false;
                     return;
                 }
-                key[r] = rowKey(j, static_cast<RowKind>(kind), static_cast<std::uint64_t>(q));
+                if (!named) key[r] = rowKey(j, static_cast<RowKind>(kind), static_cast<std::uint64_t>(q));
                 friction[r] = kind == 2;
                 auxIndex[r] = kind == 0 && node >= 0 ? kPrimary : 0;
             }
@@ -139,8 +144,7 @@ void TreeSolver::Impl::classify(const ConstraintRows& rows, std::span<const Join
     std::uint64_t others = 0;
     auxRows.clear();
     for (std::size_t r = 0; r < n; ++r) {
-        if (auxIndex[r] == kUnset) key[r] = rowKey(ranges.size(), RowKind::Other, others++);
-        if (rowKeys.size() == n) key[r] = rowKeys[r];
+        if (auxIndex[r] == kUnset && !named) key[r] = rowKey(ranges.size(), RowKind::Other, others++);
         if (rows[r].frictionSource >= 0) friction[r] = 1;
         if (auxIndex[r] == kPrimary) continue;
         if (!withFriction && (friction[r] || (rows[r].lo == 0 && rows[r].hi == 0))) {
