@@ -447,15 +447,27 @@ void ShakeCorrection::move(std::span<RigidBody> bodies, Real dt, Step& step) {
         for (int p = 0; p < block.size; ++p) lambda_[static_cast<std::size_t>(captured[p])] = y_[static_cast<std::size_t>(p)];
     }
 
-    linear_.resize(bodies.size());
-    angular_.resize(bodies.size());
-    accumulateResponses(start_, responses_, lambda_, linear_, angular_);
-    limitLambda_.assign(n, 0);
-    for (std::size_t c = 0; c < n; ++c)
-        if (start_[c].lo == 0) limitLambda_[c] = lambda_[c];
-    limitLinear_.resize(bodies.size());
-    limitAngular_.resize(bodies.size());
-    accumulateResponses(start_, responses_, limitLambda_, limitLinear_, limitAngular_);
+    // The whole move and the held limits' share of it, summed in one pass over the rows in the
+    // order accumulateResponses (row_system.h) takes, so each sum is the same to the bit.
+    for (std::vector<Vec3>* sum : {&linear_, &angular_, &limitLinear_, &limitAngular_}) sum->assign(bodies.size(), Vec3::Zero());
+    for (std::size_t c = 0; c < n; ++c) {
+        const Real l = lambda_[c];
+        if (l == 0) continue;
+        const ConstraintRow& row = start_[c];
+        const RowResponse& m = responses_[c];
+        const bool limit = row.lo == 0;
+        auto add = [&](int body, const Vec3& linear, const Vec3& angular) {
+            if (body == kWorldBody) return;
+            const std::size_t b = static_cast<std::size_t>(body);
+            linear_[b] += l * linear;
+            angular_[b] += l * angular;
+            if (!limit) return;
+            limitLinear_[b] += l * linear;
+            limitAngular_[b] += l * angular;
+        };
+        add(row.bodyA, m.linearA, m.angularA);
+        add(row.bodyB, m.linearB, m.angularB);
+    }
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         displaceBody(bodies[b], linear_[b], angular_[b]);
         bodies[b].linearVelocity += (linear_[b] - limitLinear_[b]) / dt;

@@ -127,7 +127,6 @@ private:
     std::vector<std::size_t> nowRow_;  // per captured row: its index in the rows given to apply
     std::vector<Real> drift_, lambda_, y_;
     std::vector<Vec3> linear_, angular_;
-    std::vector<Real> limitLambda_;
     std::vector<Vec3> limitLinear_, limitAngular_;
     bool structured_ = false;  // groups_, the blocks and the order are those of the last capture
     bool factorised_ = false;  // the blocks hold the factors of K of this capture
