@@ -122,8 +122,11 @@ void Island::measureJointErrors(const IslandContext& context) {
     errorRanges_.clear();
     if (!restedLastStep_) {
         restRowsHeld_ = false;
+        // Each body's rotation once, not once per joint side.
+        rowRotations_.resize(bodies_.size());
+        for (std::size_t b = 0; b < bodies_.size(); ++b) rowRotations_[b] = bodies_[b].rotation();
         for (const Joint& joint : joints_)
-            errorRanges_.push_back(writeJointErrors(joint, bodies_, context.settings.rows, jointErrors_));
+            errorRanges_.push_back(writeJointErrors(joint, bodies_, rowRotations_, context.settings.rows, jointErrors_));
         return;
     }
     restRows_.clear();

@@ -157,6 +157,7 @@ private:
     // The bodies' world inverse inertias rows_ were written with (in system_ or restInertia_):
     // valid until the next writeRows, measureJointErrors or buildResponses.
     std::span<const Mat3> rowInertia_;
+    std::vector<Mat3> rowRotations_;  // scratch of writeJointRowsOnly and measureJointErrors: rotation()s
     // Joint rows written at the end of a resting step, and what they were written from.
     struct RestPose {
         Vec3 position;

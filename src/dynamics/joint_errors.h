@@ -26,5 +26,8 @@ JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodi
 // Appends the errors of the rows writeJointRows would append; the range's `first` indexes `out`.
 JointRowRange writeJointErrors(const Joint& joint, std::span<const RigidBody> bodies, const JointRowSettings& settings,
                                std::vector<RowError>& out);
+// The same with each body's rotation() given, indexed as bodies.
+JointRowRange writeJointErrors(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> rotations,
+                               const JointRowSettings& settings, std::vector<RowError>& out);
 
 }  // namespace af

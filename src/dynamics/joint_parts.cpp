@@ -86,6 +86,15 @@ Pair kinematicPairOf(const Joint& joint, std::span<const RigidBody> bodies) {
     return {kinematicSide(joint.bodyA, bodies), kinematicSide(joint.bodyB, bodies)};
 }
 
+Pair kinematicPairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> rotations) {
+    const auto side = [&](int index) {
+        if (index == kWorldBody) return Side{};
+        const std::size_t i = static_cast<std::size_t>(index);
+        return bodySide(index, bodies[i], rotations[i], Mat3::Zero());
+    };
+    return {side(joint.bodyA), side(joint.bodyB)};
+}
+
 void addRow(const Pair& pair, const Jacobian& j, Real error, Real lo, Real hi, Real relativeCfm, ConstraintRows& out) {
     const bool againstWorld = pair.b.index == kWorldBody;
     const Vec3 linearB = againstWorld ? Vec3::Zero() : j.linearB;

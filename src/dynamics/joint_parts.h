@@ -71,6 +71,8 @@ Pair pairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<con
             std::span<const Mat3> inverseInertiaWorld);
 // Without the inertias (zero), for what reads only poses: the rows' errors.
 Pair kinematicPairOf(const Joint& joint, std::span<const RigidBody> bodies);
+// The same with each body's rotation() given.
+Pair kinematicPairOf(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> rotations);
 
 // The Jacobian of one row: Cdot = linearA·vA + angularA·ωA + linearB·vB + angularB·ωB.
 struct Jacobian {

@@ -49,6 +49,11 @@ JointRowRange writeJointErrors(const Joint& joint, std::span<const RigidBody> bo
     return writeRows(joint, kinematicPairOf(joint, bodies), settings, out);
 }
 
+JointRowRange writeJointErrors(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> rotations,
+                               const JointRowSettings& settings, std::vector<RowError>& out) {
+    return writeRows(joint, kinematicPairOf(joint, bodies, rotations), settings, out);
+}
+
 Real jointError(const Joint& joint, std::span<const RigidBody> bodies) {
     const Pair pair = pairOf(joint, bodies);
     switch (joint.type) {

@@ -82,6 +82,12 @@ std::span<const Mat3> RowSystem::inverseInertiasWorld(std::span<const RigidBody>
     return inverseInertia_;
 }
 
+std::span<const Mat3> RowSystem::inverseInertiasWorld(std::span<const RigidBody> bodies, std::span<const Mat3> rotations) {
+    inverseInertia_.resize(bodies.size());
+    for (std::size_t k = 0; k < bodies.size(); ++k) inverseInertia_[k] = bodies[k].inverseInertiaWorld(rotations[k]);
+    return inverseInertia_;
+}
+
 void RowSystem::buildMatrix(const ConstraintRows& rows) {
     const std::size_t n = rows.size();
     a_.assign(n * n, 0);

@@ -119,6 +119,8 @@ public:
     // writing or reading many rows at one pose. Valid until the next call of this or of build
     // or buildResponses (which compute it for their own bodies).
     std::span<const Mat3> inverseInertiasWorld(std::span<const RigidBody> bodies);
+    // The same with each body's rotation() given, indexed as bodies.
+    std::span<const Mat3> inverseInertiasWorld(std::span<const RigidBody> bodies, std::span<const Mat3> rotations);
 
 private:
     int n_ = 0;
