@@ -45,14 +45,19 @@ struct AngleState {
     }
 };
 
-AngleState angleState(const Joint& joint, const Pair& pair) {
+// hB = B's copy of the axis and rA = A's copy of the reference, which the axis rows have made.
+AngleState angleState(const Joint& joint, const Pair& pair, const Vec3& hB, const Vec3& rA) {
     AngleState s;
-    s.rA = pair.a.direction(joint.referenceA);
+    s.rA = rA;
     s.rB = pair.b.direction(joint.referenceB);
-    s.tB = pair.b.direction(joint.axisB).cross(s.rB);
+    s.tB = hB.cross(s.rB);
     s.x = s.rA.dot(s.tB);
     s.y = s.rA.dot(s.rB);
     return s;
+}
+
+AngleState angleState(const Joint& joint, const Pair& pair) {
+    return angleState(joint, pair, pair.b.direction(joint.axisB), pair.a.direction(joint.referenceA));
 }
 
 }  // namespace
@@ -71,7 +76,7 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
     range.equalityRows = 5;
 
     if (joint.limit != LimitType::None && joint.hinge.halfWidth < kPi) {
-        const AngleState s = angleState(joint, pair);
+        const AngleState s = angleState(joint, pair, hB, u1);
         // Most writes find the hinge far inside its V and need no exact angle (atan2 and wrap:
         // 0.4M of the bench drop's 273M instructions).
         const bool far = surelyInside(wrapAngle(roughAtan2(s.x, s.y) - joint.hinge.center),
