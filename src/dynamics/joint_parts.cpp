@@ -153,38 +153,41 @@ Real roughAtan2(Real y, Real x) {
 
 namespace {
 
-// v·(M v) for v with v[skip] = 0: M v's two other entries and the dot of them, each sum in the
-// order of Eigen's product and dot, whose terms with v[skip] are zeros that change no sum's bits.
-Real quadraticWithout(int skip, const Mat3& m, const Vec3& v) {
-    const int j = skip == 0 ? 1 : 0;
-    const int k = skip == 2 ? 1 : 2;
+// v·(M v) for v with v[Skip] = 0: M v's two other entries and the dot of them, each sum in the
+// order of Eigen's product and dot, whose terms with v[Skip] are zeros that change no sum's bits.
+template <int Skip>
+Real quadraticWithout(const Mat3& m, const Vec3& v) {
+    constexpr int j = Skip == 0 ? 1 : 0;
+    constexpr int k = Skip == 2 ? 1 : 2;
     const Real mj = m(j, j) * v[j] + m(j, k) * v[k];
     const Real mk = m(k, j) * v[j] + m(k, k) * v[k];
     return v[j] * mj + v[k] * mk;
 }
 
-// r × e_i and e_i × r for the world axis e_i, written out: the products with e_i's zeros are
-// left out. The entry along e_i is an exact zero, possibly of the other sign than the full
-// cross product's.
-Vec3 crossAxis(const Vec3& r, int i) {
-    if (i == 0) return Vec3(0, r.z(), -r.y());
-    if (i == 1) return Vec3(-r.z(), 0, r.x());
+// r × e_I for the world axis e_I, written out: the products with e_I's zeros are left out. The
+// entry along e_I is an exact zero, possibly of the other sign than the full cross product's.
+template <int I>
+Vec3 crossAxis(const Vec3& r) {
+    if constexpr (I == 0) return Vec3(0, r.z(), -r.y());
+    if constexpr (I == 1) return Vec3(-r.z(), 0, r.x());
     return Vec3(r.y(), -r.x(), 0);
 }
 
-// The point row along the world axis e_i: J = [e_i │ rA × e_i │ −e_i │ e_i × rB]. addRow's row,
+// The point row along the world axis e_I: J = [e_I │ rA × e_I │ −e_I │ e_I × rB]. addRow's row,
 // with mA·|e|² + mB·|−e|² as mA + mB (|e|² = 1 exactly), which spares it two squared norms.
-void addPointRow(const Pair& pair, int i, const Vec3& rA, const Vec3& rB, Real error, Real relativeCfm,
-                 ConstraintRows& out) {
-    const bool againstWorld = pair.b.index == kWorldBody;
-    const Vec3 e = Vec3::Unit(i);
-    const Vec3 angularA = crossAxis(rA, i);
-    const Vec3 linearB = againstWorld ? Vec3::Zero() : Vec3(-e);
-    const Vec3 angularB = againstWorld ? Vec3::Zero() : Vec3(-crossAxis(rB, i));
-    const Real diagonal = pair.a.inverseMass + quadraticWithout(i, pair.a.inverseInertia, angularA) +
-                          pair.b.inverseMass + quadraticWithout(i, pair.b.inverseInertia, angularB);
-    out.appendMade(pair.a.index, pair.b.index, e, angularA, linearB, angularB, Real(0), error, -kInfinity, kInfinity,
-                   -1, Real(0), relativeCfm * diagonal);
+template <int I>
+void writePointRow(const Pair& pair, const Vec3& rA, const Vec3& rB, Real error, Real relativeCfm, RowOut out) {
+    out.add(error, -kInfinity, kInfinity, [&](ConstraintRows& rows) {
+        const bool againstWorld = pair.b.index == kWorldBody;
+        const Vec3 e = Vec3::Unit(I);
+        const Vec3 angularA = crossAxis<I>(rA);
+        const Vec3 linearB = againstWorld ? Vec3::Zero() : Vec3(-e);
+        const Vec3 angularB = againstWorld ? Vec3::Zero() : Vec3(-crossAxis<I>(rB));
+        const Real diagonal = pair.a.inverseMass + quadraticWithout<I>(pair.a.inverseInertia, angularA) +
+                              pair.b.inverseMass + quadraticWithout<I>(pair.b.inverseInertia, angularB);
+        rows.appendMade(pair.a.index, pair.b.index, e, angularA, linearB, angularB, Real(0), error, -kInfinity,
+                        kInfinity, -1, Real(0), relativeCfm * diagonal);
+    });
 }
 
 }  // namespace
@@ -193,9 +196,9 @@ void writePointRows(const Pair& pair, const Vec3& pointA, const Vec3& pointB, Re
     const Vec3 rA = pointA - pair.a.position;
     const Vec3 rB = pointB - pair.b.position;
     const Vec3 error = pointA - pointB;
-    for (int i = 0; i < 3; ++i)
-        out.add(error[i], -kInfinity, kInfinity,
-                [&](ConstraintRows& rows) { addPointRow(pair, i, rA, rB, error[i], relativeCfm, rows); });
+    writePointRow<0>(pair, rA, rB, error.x(), relativeCfm, out);
+    writePointRow<1>(pair, rA, rB, error.y(), relativeCfm, out);
+    writePointRow<2>(pair, rA, rB, error.z(), relativeCfm, out);
 }
 
 Quat errorRotation(const Pair& pair, const Quat& relative) {
