@@ -78,7 +78,7 @@ private:
     Real measuredViolation(const IslandContext& context) const;
     // A row's target before the velocity solve, from its Cdot at the current velocities and its
     // impulse in the warm start.
-    static void allowApproach(ConstraintRow& row, Real cdot, Real dt);
+    static void allowApproach(ConstraintRow& row, Real cdot, Real dt, Real previous);
     static void holdDespiteSoftness(ConstraintRow& row, Real previous);
     LcpStatus solveVelocities(IslandContext& context);
     bool solveWithTree(IslandContext& context);
