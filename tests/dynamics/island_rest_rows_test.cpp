@@ -8,16 +8,22 @@
 namespace af {
 namespace {
 
-// A body nudged between two resting steps opens its joints by the nudge. Rows written at its new
-// pose hold that opening as it is (SHAKE closes only what the step itself opens, and the
-// projection moves positions alone); rows left from before the nudge would see it as drift of
-// the step, which SHAKE closes with a velocity.
-TEST(RestRows, BodyNudgedBetweenRestingStepsGetsNoVelocity) {
+// Our humanoid dropped on the floor and stepped until it lies still, kept awake.
+World humanoidLyingStill() {
     WorldSettings settings;
     settings.comeToRest = false;
     World world(test::humanoidAt(Vec3(0, 0, 40)), settings);
     world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
     for (int i = 0; i < 400; ++i) world.step();
+    return world;
+}
+
+// A body nudged between two resting steps opens its joints by the nudge. Rows written at its new
+// pose hold that opening as it is (SHAKE closes only what the step itself opens, and the
+// projection moves positions alone); rows left from before the nudge would see it as drift of
+// the step, which SHAKE closes with a velocity.
+TEST(RestRows, BodyNudgedBetweenRestingStepsGetsNoVelocity) {
+    World world = humanoidLyingStill();
     ASSERT_LT(world.kineticEnergy(), 1e-12) << "the humanoid lies still";
     const std::size_t hand = world.bodies().size() - 1;
     world.bodies()[hand].position += Vec3(0.5, 0, 0);  // along the floor: it still rests on it
@@ -33,11 +39,7 @@ TEST(RestRows, BodyNudgedBetweenRestingStepsGetsNoVelocity) {
 // (a leg between two ground contacts) leaked it again and the loop's impulses crept on for
 // hundreds of steps, moving the bodies a little every step.
 TEST(RestRows, RestingFigureStopsMovingAltogether) {
-    WorldSettings settings;
-    settings.comeToRest = false;
-    World world(test::humanoidAt(Vec3(0, 0, 40)), settings);
-    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
-    for (int i = 0; i < 400; ++i) world.step();
+    World world = humanoidLyingStill();
     ASSERT_LT(world.kineticEnergy(), 1e-12) << "the humanoid lies still";
     std::vector<Vec3> before;
     for (const RigidBody& body : world.bodies()) before.push_back(body.position);
