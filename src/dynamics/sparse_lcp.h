@@ -104,6 +104,7 @@ private:
     SparseRowFactor factor_;
     Real boundGap_ = 0;  // of the last solved answer: its rows at a bound, how far off it
     std::size_t lastMiss_ = 0;  // the row where guessHolds last found the guess failing
+    bool guessRefused_ = false;  // guessHolds refused the last step's guess
     // factor_, free_, slidingRows_ and the LU of small_ (with smallPivots_) are those of the last
     // answer, found by a trial: a guess in its pattern can be refined with them (refine()).
     bool refinable_ = false;
