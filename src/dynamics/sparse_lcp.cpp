@@ -31,11 +31,12 @@ constexpr int kCoreAfterOneTrial = 32;
 // Times the dense core may grow by the rows its answer finds wrong outside it.
 constexpr int kCoreRounds = 4;
 // A guess is kept when its free rows' w are within this fraction of the tolerance. What a kept
-// guess leaves undone comes back several times larger in the next step (measured on the resting
-// bench ragdoll: a joint row 8e-12 off became 9e-11 off), so a kept guess is usually followed by
-// a solve. Resting bench ragdoll, instructions per step: 654k with the whole tolerance, 573k with
-// a quarter (about half the steps keep their guess), 725k with 3%.
-constexpr Real kHoldFraction = 0.25;
+// guess leaves undone comes back about three times larger in the next step, so a larger fraction
+// keeps more steps in a row before a solve (see guessHolds). Bench single / grid4, 600 steps,
+// millions of instructions: 219.4 / - with 0.1, 218.8 / 5321 with 0.25, 218.5 / 5315 with 0.5,
+// 218.1 / 5309 with the whole tolerance. (When a resting figure still drifted, before 72b81dc,
+// a quarter was best: 573k per resting step against 654k with the whole tolerance.)
+constexpr Real kHoldFraction = 1;
 
 Real mid(Real lo, Real hi, Real v) { return std::min(hi, std::max(lo, v)); }
 
@@ -230,8 +231,8 @@ bool SparseLcpSolver::guessHolds(std::span<const ConstraintRow> rows, std::span<
     // single solve settles only that step: the next keeps its guess and the one after refuses it,
     // every other step whatever kHoldFraction is (bench ragdoll, a soft joint row: 1.6e-12 kept,
     // 4.8e-12 refused). The step after a refusal solves too, which settles the figure to rounding
-    // (3e-14), and the guess then holds for several steps: bench single 224.6M -> 218.9M
-    // instructions, grid4 5473M -> 5322M.
+    // (3e-14), and the guess then holds for several steps: bench single 224.6M -> 218.8M
+    // instructions, grid4 5472M -> 5321M (with a quarter of the tolerance).
     if (std::exchange(guessRefused_, false)) return false;
     const auto holds = [&](std::size_t i) {
         const Real atBound = xTolerance(i, tolerance), gap = std::max(atBound, 2 * boundGap_);
