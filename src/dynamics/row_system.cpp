@@ -1,6 +1,7 @@
 #include "row_system.h"
 
 #include <algorithm>
+#include <array>
 
 namespace af {
 
@@ -53,9 +54,20 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
     states_.resize(n);
     rowBodies_.resize(n);
 
+    // Through local pointers: a store through a member vector's data could, for all the compiler
+    // knows, change the vectors themselves (the rows' too), which it would then reload for every row (resting
+    // bench ragdoll: ~1.5k of buildResponses' 10.8k instructions a step).
+    const ConstraintRow* const row = rows.all().data();
+    RowResponse* const response = response_.data();
+    std::array<int, 2>* const rowBodies = rowBodies_.data();
+    Real* const lo = lo_.data();
+    Real* const hi = hi_.data();
+    int* const findex = findex_.data();
+    Real* const mu = mu_.data();
+    Real* const cfm = cfm_.data();
     for (std::size_t i = 0; i < n; ++i) {
-        const ConstraintRow& r = rows[i];
-        RowResponse& m = response_[i];
+        const ConstraintRow& r = row[i];
+        RowResponse& m = response[i];
         auto side = [&](int body, const Vec3& linear, const Vec3& angular, Vec3& linearOut, Vec3& angularOut) {
             if (body == kWorldBody) {
                 linearOut.setZero();
@@ -67,12 +79,12 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
         };
         side(r.bodyA, r.linearA, r.angularA, m.linearA, m.angularA);
         side(r.bodyB, r.linearB, r.angularB, m.linearB, m.angularB);
-        rowBodies_[i] = {r.bodyA, r.bodyB};
-        lo_[i] = r.lo;
-        hi_[i] = r.hi;
-        findex_[i] = r.frictionSource;
-        mu_[i] = r.frictionCoefficient;
-        cfm_[i] = r.cfm;
+        rowBodies[i] = {r.bodyA, r.bodyB};
+        lo[i] = r.lo;
+        hi[i] = r.hi;
+        findex[i] = r.frictionSource;
+        mu[i] = r.frictionCoefficient;
+        cfm[i] = r.cfm;
     }
 }
 
