@@ -50,6 +50,7 @@ int findRoot(std::vector<int>& parent, int i) {
 void ShakeCorrection::capture(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
                               const RowSystem& system, std::span<const char> hold) {
     start_.clear();
+    heldLimits_ = false;
     offset_.clear();
     responses_.clear();
     factorised_ = false;
@@ -71,8 +72,9 @@ void ShakeCorrection::capture(const ConstraintRows& rows, const std::vector<Join
             const std::size_t i = static_cast<std::size_t>(range.first + r);
             const bool limit = r >= range.equalityRows;
             if (limit && !(i < hold.size() && hold[i])) continue;
-            start_.push_back(rows[i]);
-            if (limit) start_.back().error = std::min(rows[i].error, Real(0));
+            const ConstraintRow& row = rows[i];
+            start_.push_back({row.bodyA, row.bodyB, limit, row.angularA, limit ? std::min(row.error, Real(0)) : row.error});
+            heldLimits_ = heldLimits_ || limit;
             offset_.push_back(r);
             responses_.push_back(system.response(i));
         }
@@ -449,13 +451,15 @@ void ShakeCorrection::move(std::span<RigidBody> bodies, Real dt, Step& step) {
 
     // The whole move and the held limits' share of it, summed in one pass over the rows in the
     // order accumulateResponses (row_system.h) takes, so each sum is the same to the bit.
-    for (std::vector<Vec3>* sum : {&linear_, &angular_, &limitLinear_, &limitAngular_}) sum->assign(bodies.size(), Vec3::Zero());
+    for (std::vector<Vec3>* sum : {&linear_, &angular_}) sum->assign(bodies.size(), Vec3::Zero());
+    if (heldLimits_)
+        for (std::vector<Vec3>* sum : {&limitLinear_, &limitAngular_}) sum->assign(bodies.size(), Vec3::Zero());
     for (std::size_t c = 0; c < n; ++c) {
         const Real l = lambda_[c];
         if (l == 0) continue;
-        const ConstraintRow& row = start_[c];
+        const StartRow& row = start_[c];
         const RowResponse& m = responses_[c];
-        const bool limit = row.lo == 0;
+        const bool limit = row.limit;
         auto add = [&](int body, const Vec3& linear, const Vec3& angular) {
             if (body == kWorldBody) return;
             const std::size_t b = static_cast<std::size_t>(body);
@@ -470,8 +474,8 @@ void ShakeCorrection::move(std::span<RigidBody> bodies, Real dt, Step& step) {
     }
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         displaceBody(bodies[b], linear_[b], angular_[b]);
-        bodies[b].linearVelocity += (linear_[b] - limitLinear_[b]) / dt;
-        bodies[b].angularVelocity += (angular_[b] - limitAngular_[b]) / dt;
+        bodies[b].linearVelocity += (heldLimits_ ? linear_[b] - limitLinear_[b] : linear_[b]) / dt;
+        bodies[b].angularVelocity += (heldLimits_ ? angular_[b] - limitAngular_[b] : angular_[b]) / dt;
         step.move = std::max(step.move, linear_[b].norm() + angular_[b].norm() * gyrationRadius(bodies[b]));
     }
 }

@@ -110,7 +110,15 @@ private:
         return {laterRows_.data() + g.rowsBegin + t + 1, static_cast<std::size_t>(g.rowsEnd - g.rowsBegin - t - 1)};
     }
 
-    std::vector<ConstraintRow> start_;
+    // What SHAKE reads of a captured row (a whole row is three times the size to copy).
+    struct StartRow {
+        int bodyA = kWorldBody, bodyB = kWorldBody;
+        bool limit = false;  // a held limit row
+        Vec3 angularA = Vec3::Zero();
+        Real error = 0;      // C₀, a limit's min(C₀, 0)
+    };
+    std::vector<StartRow> start_;
+    bool heldLimits_ = false;  // any of start_
     std::vector<int> offset_;  // per captured row: its place in its joint's range
     std::vector<RowResponse> responses_;
     std::vector<Group> groups_;
