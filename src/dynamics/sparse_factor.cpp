@@ -313,7 +313,19 @@ void SparseRowFactor::solve(std::span<Real> x) const {
             y[j] = yj / l[j];
         }
     }
-    for (std::size_t g = groups; g-- > 0;) {
+    backward();
+    for (std::size_t v = 0; v < vars; ++v) x[static_cast<std::size_t>(rowOfVariable_[v])] = work_[v];
+}
+
+void SparseRowFactor::solveForwarded(std::span<const Real> z, std::span<Real> x) const {
+    work_.assign(z.begin(), z.end());
+    backward();
+    for (std::size_t v = 0; v < work_.size(); ++v) x[static_cast<std::size_t>(rowOfVariable_[v])] = work_[v];
+}
+
+// work_ ← L⁻ᵀ work_.
+void SparseRowFactor::backward() const {
+    for (std::size_t g = groupKeys_.size(); g-- > 0;) {
         const int n = size_[g], height = panelHeight_[g];
         if (n == 0) continue;
         const Real* panel = values_.data() + static_cast<std::size_t>(panelStart_[g]);
@@ -328,7 +340,6 @@ void SparseRowFactor::solve(std::span<Real> x) const {
             y[j] = (y[j] - front) - block;
         }
     }
-    for (std::size_t v = 0; v < vars; ++v) x[static_cast<std::size_t>(rowOfVariable_[v])] = work_[v];
 }
 
 }  // namespace af

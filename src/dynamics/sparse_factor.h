@@ -69,6 +69,9 @@ public:
     void unit(int row, std::span<Real> y, std::span<std::uint8_t> active) const;
     // y ← L⁻¹ y over the flagged groups, flagging those it reaches.
     void forward(std::span<Real> y, std::span<std::uint8_t> active) const;
+    // x_F ← L⁻ᵀ z for z in the factor's numbering: A_FF⁻¹ r when z = D⁻¹ L⁻¹ r, a right-hand side
+    // already forwarded and scaled (other entries of x are left alone).
+    void solveForwarded(std::span<const Real> z, std::span<Real> x) const;
     // D⁻¹ per variable.
     void inversePivots(std::span<Real> out) const;
     // The flagged groups that hold variables, ascending, appended to out: where a forwarded
@@ -87,6 +90,7 @@ private:
     int frontSlot(int column, int group) const;
     void assemble(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, std::span<const Real> cfm);
     bool eliminate(int group);
+    void backward() const;
 
     // Structure (analyse): the distinct body pairs, ascending (sortedKeys_), each row's pair and
     // the pairs' graph. Order (factor, when the pairs with free rows change): groups numbered in

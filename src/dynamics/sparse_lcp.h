@@ -120,7 +120,7 @@ private:
     // LCP on their Schur complement with the pivoting solver.
     std::vector<int> core_, coreIndex_;
     std::vector<std::uint8_t> inCore_;
-    std::vector<Real> inversePivots_, scaledPaths_;
+    std::vector<Real> inversePivots_, scaledPaths_, forwarded_;
     std::vector<Real> coreA_, coreB_, coreLo_, coreHi_, coreMu_, coreCfm_, coreX_, zeros_;
     std::vector<int> coreFindex_;
     std::vector<LcpRowState> coreStates_;
