@@ -88,12 +88,24 @@ bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::spa
         result.status = LcpStatus::Unsatisfiable;
         return false;
     }
-    // The free rows again, the sliding rows' impulses now among the known ones.
+    // The free rows follow the sliding rows' impulses: x_F −= A_FF⁻¹ A_Fs β = L⁻ᵀ D⁻¹ (Σ_j β_j L⁻¹a_j),
+    // from the forwarded columns at hand rather than a second solve through the bodies. Bench
+    // single, settling steps 26-89: solvePattern 330k -> 319k instructions a step.
+    forwarded_.assign(vars, 0);
     for (std::size_t j = 0; j < k; ++j) {
         x[static_cast<std::size_t>(slidingRows_[j])] = beta_[j];
         use_[static_cast<std::size_t>(slidingRows_[j])] = 1;
+        const std::span<const Real> column = path(j);
+        for (const int g : support(j))
+            for (int v = factor_.firstVariable(g); v < factor_.firstVariable(g + 1); ++v)
+                forwarded_[static_cast<std::size_t>(v)] += beta_[j] * column[static_cast<std::size_t>(v)];
     }
-    solveFree(rows, responses, problem.b, x, x);
+    inversePivots_.resize(vars);
+    factor_.inversePivots(inversePivots_);
+    for (std::size_t v = 0; v < vars; ++v) forwarded_[v] *= inversePivots_[v];
+    factor_.solveForwarded(forwarded_, rhs_);
+    for (std::size_t i = 0; i < n; ++i)
+        if (free_[i]) x[i] -= rhs_[i];
     ++result.couplingSolves;
     return true;
 }
