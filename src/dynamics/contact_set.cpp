@@ -72,10 +72,8 @@ void ContactSet::add(const BodyContact& c, std::span<const RigidBody> bodies, st
 }
 
 void ContactSet::keep(std::span<const ContactPoint> points, std::span<const RigidBody> bodies) {
-    const std::size_t first = points_.size();
-    points_.insert(points_.end(), points.begin(), points.end());
-    for (std::size_t k = first; k < points_.size(); ++k) {
-        ContactPoint& p = points_[k];
+    for (const ContactPoint& kept : points) {
+        ContactPoint& p = points_.emplace_back(kept);
         const RigidBody& a = bodies[static_cast<std::size_t>(p.bodyA)];
         const RigidBody* b = bodyOrNull(bodies, p.bodyB);
         p.placed = true;
