@@ -138,10 +138,11 @@ bool TreeFactor::factor(const Forest& forest, const ConstraintRows& rows, std::s
                 edge_[static_cast<std::size_t>(side)] = k;
             }
         Mat6& d = d_[i];
+        d.setZero();
         for (int q = 0; q < k; ++q) {
             const ConstraintRow& row = rows[static_cast<std::size_t>(range.first + q)];
             if (nodeOf(forest, row.bodyA) != node.sideA || nodeOf(forest, row.bodyB) != node.sideB) return false;
-            for (int r = 0; r < k; ++r) d(q, r) = q == r ? -row.cfm : 0;
+            d(q, q) = -row.cfm;
             for (int s = 0; s < 2; ++s) {
                 const int side = s == 0 ? node.sideA : node.sideB;
                 if (side < 0) continue;
