@@ -77,11 +77,11 @@ void Island::applyImpulses() {
 
 // The extra source sees the world's bodies (with this island's current poses written back);
 // its rows that touch this island are kept, renumbered.
-void Island::writeRows(IslandContext& context, bool reuseRestRows, bool atStepStart) {
+void Island::writeRows(IslandContext& context, bool atStepStart) {
     rows_.clear();
     ranges_.clear();
     rowKeys_.clear();
-    if (reuseRestRows && restRowsHold(context)) {
+    if (restRowsHold(context)) {
         std::swap(rows_, restRows_);
         std::swap(ranges_, restRanges_);
         rowInertia_ = restInertia_;
@@ -117,10 +117,10 @@ void Island::writeRows(IslandContext& context, bool reuseRestRows, bool atStepSt
     }
 }
 
-void Island::measureJointErrors(const IslandContext& context) {
+void Island::measureJointErrors(const IslandContext& context, bool keepRows) {
     jointErrors_.clear();
     errorRanges_.clear();
-    if (!restedLastStep_) {
+    if (!keepRows) {
         restRowsHeld_ = false;
         // Each body's rotation once, not once per joint side.
         rowRotations_.resize(bodies_.size());

@@ -64,14 +64,15 @@ public:
     const WarmStartCache& velocityWarmStart() const { return velocityCache_; }
 
 private:
-    // reuseRestRows: take the joint rows measureJointErrors wrote at the end of the last step if
-    // they still hold (a step's start).
+    // The joint rows are those measureJointErrors kept (restRows_) if they still hold.
     // atStepStart: the bodies are at the poses the step's points were placed at (the velocity solves).
-    void writeRows(IslandContext& context, bool reuseRestRows = false, bool atStepStart = false);
-    // The joint rows' errors at the bodies' poses (jointErrors_, errorRanges_). Without the rows,
-    // unless the last step ended at rest: then this step likely does too, and the next one
-    // starts from these poses, so the joint rows are written whole (restRows_) for it to take.
-    void measureJointErrors(const IslandContext& context);
+    void writeRows(IslandContext& context, bool atStepStart = false);
+    // The joint rows' errors at the bodies' poses (jointErrors_, errorRanges_). With keepRows the
+    // joint rows are written whole (restRows_) for the next writeRows to take: a measure is
+    // mostly followed by rows at the same poses, a projection pass's or the next step's (bench
+    // drop: of a settling step's 4 to 6 joint row writes, all but SHAKE's capture and the measure
+    // between its two steps, which moves the bodies again).
+    void measureJointErrors(const IslandContext& context, bool keepRows = true);
     bool restRowsHold(const IslandContext& context) const;
     // largestViolation() of the rows writeRows would write now, from jointErrors_ (measured at
     // the current poses) and the contact points, without writing them. Not for an extra source.
@@ -88,7 +89,7 @@ private:
     void statesFromImpulses(const IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
     // The velocity solve: rows written at the step's start, solved, impulses applied.
-    bool solveVelocityRows(Real dt, IslandContext& context, bool reuseRestRows);
+    bool solveVelocityRows(Real dt, IslandContext& context, bool firstSolve);
     void leaveOutFarPoints(Real dt, const IslandContext& context);
     bool bringBackClosingPoints(Real dt, const IslandContext& context);
     bool closeDrift(Real dt, IslandContext& context);
@@ -158,7 +159,7 @@ private:
     // valid until the next writeRows, measureJointErrors or buildResponses.
     std::span<const Mat3> rowInertia_;
     std::vector<Mat3> rowRotations_;  // scratch of writeJointRowsOnly and measureJointErrors: rotation()s
-    // Joint rows written at the end of a resting step, and what they were written from.
+    // Joint rows measureJointErrors kept, and what they were written from.
     struct RestPose {
         Vec3 position;
         Quat orientation;

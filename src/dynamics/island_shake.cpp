@@ -39,7 +39,7 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
     if (!driftedLastStep_) return false;
     beforeShake_.assign(bodies_.begin(), bodies_.end());
     const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
-    measureJointErrors(context);
+    measureJointErrors(context, false);
     const ShakeCorrection::Step second = shake_.applyAgain(jointErrors_, errorRanges_, bodies_, dt);
     const bool wellConditioned = first.move <= kShakeTrust * first.drift + kShakeTolerance &&
                                  second.move <= kShakeTrust * second.drift + kShakeTolerance;

@@ -62,13 +62,13 @@ void Island::project(IslandContext& context) { projectPositions(context, false);
 
 // Returns whether the solve succeeded; the step counts a failure only of its last solve (one
 // that left out a point it needed is solved again).
-bool Island::solveVelocityRows(Real dt, IslandContext& context, bool reuseRestRows) {
-    writeRows(context, reuseRestRows, true);
+bool Island::solveVelocityRows(Real dt, IslandContext& context, bool firstSolve) {
+    writeRows(context, true);
     // The tree solver and PGS read the rows themselves: A is built only for the dense solve.
     system_.buildResponses(rows_, bodies_, rowInertia_);
     if (context.settings.solver == SolverKind::Exact && !large(context)) system_.buildMatrix(rows_);
     context.velocityWarmStart.recall(rowKeys_, system_.states(), system_.solution());
-    const bool resting = reuseRestRows && restedLastStep_;
+    const bool resting = firstSolve && restedLastStep_;
     system_.setVelocityRhs(rows_, bodies_, [dt, resting](ConstraintRow& row, Real cdot, Real previous) {
         allowApproach(row, cdot, dt, resting ? previous : 0);
         holdDespiteSoftness(row, previous);
