@@ -136,6 +136,7 @@ private:
         std::size_t point;  // in points_
         Vec3 onA, onB;
         Real gap = 0;  // slop + n·(pA − pB)
+        bool staysApart = false;  // the last bringBackClosingPoints bounded its closing below gap
     };
     struct BodySpeed {
         Real linear, angular;  // |v|, |ω|
@@ -144,6 +145,9 @@ private:
     std::vector<ContactPoint> nearPoints_;
     std::vector<FarPoint> farPoints_;
     bool nearPointsOnly_ = false;
+    // The bodies moved only by the step's integration since the last bringBackClosingPoints: the
+    // far points that stay apart are still apart (see measuredViolation).
+    bool farPointsApart_ = false;
     std::vector<Vec3> linearBefore_, angularBefore_;
     std::span<const int> localOf_;
     bool treeReady_ = false;  // the tree's structure is that of joints_ (same bodies, same joints)

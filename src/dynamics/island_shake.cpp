@@ -37,6 +37,7 @@ constexpr Real kShakeTolerance = 1e-9;  // length units: drift this small counts
 bool Island::closeDrift(Real dt, IslandContext& context) {
     driftedLastStep_ = captureDrift(context);
     if (!driftedLastStep_) return false;
+    farPointsApart_ = false;
     beforeShake_.assign(bodies_.begin(), bodies_.end());
     const ShakeCorrection::Step first = shake_.apply(rows_, ranges_, bodies_, dt, kShakeTolerance);
     measureJointErrors(context, false);

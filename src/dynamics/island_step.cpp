@@ -27,6 +27,7 @@ void Island::step(Real dt, IslandContext& context) {
     bool solved = solveVelocityRows(dt, context, true);
     while (bringBackClosingPoints(dt, context)) solved = solveVelocityRows(dt, context, false);
     nearPointsOnly_ = false;
+    farPointsApart_ = true;
     context.report.rows += static_cast<int>(rows_.size());
     if (!solved) ++context.report.failures;
     // Doom caps the speeds after the constraint forces too (§4.9): a whipping chain end must not
@@ -55,6 +56,7 @@ void Island::step(Real dt, IslandContext& context) {
     const int passes = context.report.projectionPasses;
     const bool jointErrorsAtPoses = !iterative(context) && !closeDrift(dt, context);
     projectPositions(context, jointErrorsAtPoses);
+    farPointsApart_ = false;
     restedLastStep_ = jointErrorsAtPoses && context.report.projectionPasses == passes;
 }
 
@@ -136,9 +138,10 @@ bool Island::bringBackClosingPoints(Real dt, const IslandContext& context) {
         const BodySpeed& speed = bodySpeeds_[static_cast<std::size_t>(body)];
         return speed.linear + speed.angular * local.norm();
     };
-    const auto closing = [&](const FarPoint& far) {
+    const auto closing = [&](FarPoint& far) {
         const ContactPoint& p = points_[far.point];
-        if (2 * dt * (reach(p.bodyA, p.localA) + reach(p.bodyB, p.localB)) < far.gap) return false;
+        far.staysApart = 2 * dt * (reach(p.bodyA, p.localA) + reach(p.bodyB, p.localB)) < far.gap;
+        if (far.staysApart) return false;
         const RigidBody* a = contact_detail::bodyOrNull(bodies_, p.bodyA);
         const RigidBody* b = contact_detail::bodyOrNull(bodies_, p.bodyB);
         Vec3 velocity = Vec3::Zero();
