@@ -55,7 +55,8 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
 // When the joints drifted since the velocity solve, captures its rows (rows_, responses in
 // system_) for SHAKE and writes the joint rows at the moved poses for its first step; otherwise
 // returns false with jointErrors_ measured at the poses. A resting figure has no drift: it is
-// measured without writing the rows. A figure that drifted in its last step most likely drifts
+// measured first, rows_ left as the velocity solve wrote them (the measure's rows are kept for
+// the next step). A figure that drifted in its last step most likely drifts
 // again: its rows are written at once and give the drift, the velocity solve's rows kept for the
 // capture meanwhile (measuring first cost 17k instructions a step more for the bench ragdoll).
 bool Island::captureDrift(const IslandContext& context) {
