@@ -75,6 +75,18 @@ bool invertDefinite(const Mat6& a, Real sign, Mat6& inverse) {
         Mat3 pInverse;
         Small<M> tInverse;
         if (!invertSmall<3>(p, pInverse)) return false;
+        // A leaf body's block is [m·1 0; 0 I]: with q exactly 0 the coupling terms below are
+        // exact zeros and t is r, so skipping them gives the same values (bench single: a third
+        // of the bodies, 0.14M of 218M instructions).
+        if (qt.isZero(0)) {
+            if (!invertSmall<M>(r, tInverse)) return false;
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j <= i; ++j) inverse(i, j) = inverse(j, i) = sign * Real(0.5) * (pInverse(i, j) + pInverse(j, i));
+            inverse.block<3, M>(0, 3).setZero();
+            inverse.block<M, 3>(3, 0).setZero();
+            inverse.block<M, M>(3, 3) = sign * tInverse;
+            return true;
+        }
         const Eigen::Matrix<Real, 3, M> x = pInverse * qt.transpose();
         const Small<M> t = r - qt * x;
         if (!invertSmall<M>(Real(0.5) * (t + t.transpose()), tInverse)) return false;
