@@ -121,6 +121,9 @@ private:
     std::vector<int> core_, coreIndex_;
     std::vector<std::uint8_t> inCore_;
     std::vector<Real> inversePivots_, scaledPaths_, forwarded_;
+    // The last round's core, paths and Schur complement, for the next round of the same solve.
+    std::vector<int> lastCore_, lastCoreIndex_, lastPathStart_;
+    std::vector<Real> lastPaths_, lastCoreA_;
     std::vector<Real> coreA_, coreB_, coreLo_, coreHi_, coreMu_, coreCfm_, coreX_, zeros_;
     std::vector<int> coreFindex_;
     std::vector<LcpRowState> coreStates_;
