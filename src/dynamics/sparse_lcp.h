@@ -19,6 +19,7 @@
 // grows too large, the solve says so and the caller falls back to its other solvers.
 
 #include "af/dynamics/lcp.h"
+#include "dynamics/lcp_internal.h"
 #include "sparse_factor.h"
 
 #include <span>
@@ -112,7 +113,10 @@ private:
     std::vector<Real> slidingAnswers_;
     std::vector<int> smallPivots_;
     std::vector<Real> correction_;
-    std::vector<Real> lo_, hi_, w_, rhs_, paths_, small_, beta_;
+    std::vector<Real> lo_, hi_, w_, rhs_, small_, beta_;
+    // Forwarded columns (solvePattern's and the core's, of different sizes in turn): each is
+    // written whole before it is read, so growing needs no zeroing (lcp::Workspace).
+    lcp::Workspace paths_;
     std::vector<std::uint8_t> free_, use_, reached_, switched_, touched_;
     std::vector<int> pathStart_;  // solveCore: the first variable each path reaches
     std::vector<int> supports_, supportStart_;  // solvePattern: the groups each path reaches
@@ -120,11 +124,12 @@ private:
     // LCP on their Schur complement with the pivoting solver.
     std::vector<int> core_, coreIndex_;
     std::vector<std::uint8_t> inCore_;
-    std::vector<Real> inversePivots_, scaledPaths_, forwarded_;
+    std::vector<Real> inversePivots_, forwarded_;
+    lcp::Workspace scaledPaths_;
     // The last round's core, paths and Schur complement, for the next round of the same solve.
     std::vector<int> lastCore_, lastCoreIndex_, lastPathStart_;
-    std::vector<Real> lastPaths_, lastCoreA_;
-    std::vector<Real> coreA_, coreB_, coreLo_, coreHi_, coreMu_, coreCfm_, coreX_, zeros_;
+    lcp::Workspace lastPaths_, lastCoreA_, coreA_;
+    std::vector<Real> coreB_, coreLo_, coreHi_, coreMu_, coreCfm_, coreX_, zeros_;
     std::vector<int> coreFindex_;
     std::vector<LcpRowState> coreStates_;
     LcpExactSolver coreSolver_;
