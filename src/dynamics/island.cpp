@@ -42,16 +42,20 @@ void Island::gather(std::span<const int> bodyIds, std::span<const int> jointIds,
         for (std::size_t k = 0; k < jointIds.size(); ++k)
             joints_[k].lastImpulse = world.joints[static_cast<std::size_t>(jointIds[k])].lastImpulse;
     }
-    points_.clear();
+    // Written in place through local pointers: push_back's capacity checks and the copy through
+    // a temporary cost more than the copies themselves.
+    points_.resize(pointIds.size());
+    ContactPoint* point = points_.data();
     for (const int p : pointIds) {
-        ContactPoint point = world.points[static_cast<std::size_t>(p)];
-        point.bodyA = renumber(point.bodyA, localOf);
-        point.bodyB = renumber(point.bodyB, localOf);
-        points_.push_back(point);
+        *point = world.points[static_cast<std::size_t>(p)];
+        point->bodyA = renumber(point->bodyA, localOf);
+        point->bodyB = renumber(point->bodyB, localOf);
+        ++point;
     }
     localOf_ = localOf;
-    bodies_.clear();
-    for (const int b : bodyIds) bodies_.push_back(world.bodies[static_cast<std::size_t>(b)]);
+    bodies_.resize(bodyIds.size());
+    RigidBody* body = bodies_.data();
+    for (const int b : bodyIds) *body++ = world.bodies[static_cast<std::size_t>(b)];
 }
 
 void Island::scatter(std::vector<RigidBody>& worldBodies, std::vector<Joint>& worldJoints) const {
