@@ -25,25 +25,32 @@ void WarmStartCache::sort() const {
     std::sort(byKey_.begin(), byKey_.end());
 }
 
+// Read through locals: the stores to states (one byte each) may alias anything, and the loop
+// would load entries_'s bounds again after each.
 int WarmStartCache::recall(std::span<const std::uint64_t> keys, std::span<LcpRowState> states,
                            std::span<Real> impulses) const {
+    const Entry* const entries = entries_.data();
+    const std::size_t count = entries_.size();
+    const std::uint64_t* const key = keys.data();
+    LcpRowState* const state = states.data();
+    Real* const impulse = impulses.data();
     int found = 0;
     std::size_t next = 0;  // the entry after the last one found
     for (std::size_t i = 0; i < keys.size(); ++i) {
         std::size_t at = next;
-        if (at >= entries_.size() || entries_[at].key != keys[i]) {
+        if (at >= count || entries[at].key != key[i]) {
             sort();
-            const auto k = std::lower_bound(byKey_.begin(), byKey_.end(), std::make_pair(keys[i], std::size_t(0)));
-            at = k != byKey_.end() && k->first == keys[i] ? k->second : entries_.size();
+            const auto k = std::lower_bound(byKey_.begin(), byKey_.end(), std::make_pair(key[i], std::size_t(0)));
+            at = k != byKey_.end() && k->first == key[i] ? k->second : count;
         }
-        if (at < entries_.size() && entries_[at].key == keys[i]) {
-            states[i] = entries_[at].state;
-            impulses[i] = entries_[at].impulse;
+        if (at < count && entries[at].key == key[i]) {
+            state[i] = entries[at].state;
+            impulse[i] = entries[at].impulse;
             next = at + 1;
             ++found;
         } else {
-            states[i] = LcpRowState::Unknown;
-            impulses[i] = 0;
+            state[i] = LcpRowState::Unknown;
+            impulse[i] = 0;
         }
     }
     return found;
