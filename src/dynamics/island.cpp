@@ -94,12 +94,17 @@ void Island::writeRows(IslandContext& context, bool atStepStart) {
     } else {
         writeJointRowsOnly(context);
     }
+    // The joints' keys written in place: push_back's capacity check per key cost more than the key.
+    std::size_t jointRows = 0;
+    for (const JointRowRange& range : ranges_) jointRows += static_cast<std::size_t>(range.total());
+    rowKeys_.resize(jointRows);
+    std::uint64_t* key = rowKeys_.data();
     for (std::size_t k = 0; k < joints_.size(); ++k) {
         const JointRowRange& range = ranges_[k];
         const std::uint64_t joint = kJointKeyTag | (static_cast<std::uint64_t>(jointIds_[k]) << 8);
-        for (int r = 0; r < range.equalityRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(r));
-        for (int r = 0; r < range.limitRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(64 + r));
-        for (int r = 0; r < range.frictionRows; ++r) rowKeys_.push_back(joint | static_cast<std::uint64_t>(128 + r));
+        for (int r = 0; r < range.equalityRows; ++r) *key++ = joint | static_cast<std::uint64_t>(r);
+        for (int r = 0; r < range.limitRows; ++r) *key++ = joint | static_cast<std::uint64_t>(64 + r);
+        for (int r = 0; r < range.frictionRows; ++r) *key++ = joint | static_cast<std::uint64_t>(128 + r);
     }
     writeContactRows(nearPointsOnly_ ? nearPoints_ : points_, bodies_, rowInertia_, context.settings.contact, rows_, rowKeys_,
                      atStepStart);
