@@ -151,8 +151,16 @@ bool Island::bringBackClosingPoints(Real dt, const IslandContext& context) {
         nearPoints_.push_back(p);
         return true;
     };
-    farPoints_.erase(std::remove_if(farPoints_.begin(), farPoints_.end(), closing), farPoints_.end());
-    if (farPoints_.size() == before) return false;
+    // A loop of its own rather than std::remove_if, whose two calls of closing GCC left out of line.
+    FarPoint* const points = farPoints_.data();
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < before; ++k) {
+        if (closing(points[k])) continue;
+        if (kept != k) points[kept] = points[k];
+        ++kept;
+    }
+    if (kept == before) return false;
+    farPoints_.resize(kept);
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
         bodies_[b].linearVelocity = linearBefore_[b];
         bodies_[b].angularVelocity = angularBefore_[b];
