@@ -94,16 +94,21 @@ void Island::leaveOutFarPoints(Real dt, const IslandContext& context) {
     farPoints_.clear();
     nearPointsOnly_ = false;
     if (!restedLastStep_) return;
-    const ContactSettings& contact = context.settings.contact;
-    for (std::size_t k = 0; k < points_.size(); ++k) {
-        const ContactPoint& p = points_[k];
+    // Locals: the far points' stores might otherwise alias the settings and the points' bounds.
+    const Real slop = context.settings.contact.slop;
+    const Real farGap = kFarGap * slop;
+    const Real restitutionThreshold = context.settings.contact.restitutionThreshold;
+    const ContactPoint* const points = points_.data();
+    const std::size_t count = points_.size();
+    for (std::size_t k = 0; k < count; ++k) {
+        const ContactPoint& p = points[k];
         // A kept point was placed at the step's start poses, which the bodies still have.
         FarPoint at = p.placed ? FarPoint{k, p.onA, p.onB}
                                : FarPoint{k, contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyA), p.localA),
                                           contact_detail::toWorld(contact_detail::bodyOrNull(bodies_, p.bodyB), p.localB)};
-        at.gap = contact.slop + p.normal.dot(at.onA - at.onB);  // slop − currentDepth, bit for bit
-        const bool bounces = p.restitution > 0 && -p.approachVelocity > contact.restitutionThreshold;
-        const bool far = !bounces && at.gap > kFarGap * contact.slop &&
+        at.gap = slop + p.normal.dot(at.onA - at.onB);  // slop − currentDepth, bit for bit
+        const bool bounces = p.restitution > 0 && -p.approachVelocity > restitutionThreshold;
+        const bool far = !bounces && at.gap > farGap &&
                          at.gap + 2 * dt * std::min(p.approachVelocity, Real(0)) > 0;
         far ? farPoints_.push_back(at) : nearPoints_.push_back(p);
     }
