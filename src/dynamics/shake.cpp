@@ -320,8 +320,12 @@ void ShakeCorrection::solveBlock(const Block& block, const std::vector<Real>& k,
         const Group& g = groups_[static_cast<std::size_t>(eliminated_[static_cast<std::size_t>(block.firstGroup + e)])];
         for (int t = 0; t < g.at.size; ++t) {
             const std::size_t r = static_cast<std::size_t>(g.at.start + t);
+            // Read once: the stores to y[i] would otherwise make y[r] load again (later rows are
+            // never r).
+            const Real yr = y[r];
+            const Real* column = k.data() + r;
 #pragma GCC unroll 4
-            for (const int i : laterRowsOf(g, t)) y[i] -= k[static_cast<std::size_t>(i) * n + r] * y[r];
+            for (const int i : laterRowsOf(g, t)) y[i] -= column[static_cast<std::size_t>(i) * n] * yr;
         }
     }
     for (int e = block.groups - 1; e >= 0; --e) {
