@@ -476,12 +476,20 @@ void ShakeCorrection::move(std::span<RigidBody> bodies, Real dt, Step& step) {
         add(row.bodyA, m.linearA, m.angularA);
         add(row.bodyB, m.linearB, m.angularB);
     }
+    // Read into locals: the call to displaceBody (out of line) would otherwise make heldLimits_
+    // and step.move load (and the latter store) again for each body.
+    const bool held = heldLimits_;
+    Real largest = step.move;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-        displaceBody(bodies[b], linear_[b], angular_[b]);
-        bodies[b].linearVelocity += (heldLimits_ ? linear_[b] - limitLinear_[b] : linear_[b]) / dt;
-        bodies[b].angularVelocity += (heldLimits_ ? angular_[b] - limitAngular_[b] : angular_[b]) / dt;
-        step.move = std::max(step.move, linear_[b].norm() + angular_[b].norm() * gyrationRadius(bodies[b]));
+        const Vec3& linear = linear_[b];
+        const Vec3& angular = angular_[b];
+        RigidBody& body = bodies[b];
+        displaceBody(body, linear, angular);
+        body.linearVelocity += (held ? linear - limitLinear_[b] : linear) / dt;
+        body.angularVelocity += (held ? angular - limitAngular_[b] : angular) / dt;
+        largest = std::max(largest, linear.norm() + angular.norm() * gyrationRadius(body));
     }
+    step.move = largest;
 }
 
 }  // namespace af
