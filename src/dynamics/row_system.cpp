@@ -44,7 +44,7 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
     n_ = static_cast<int>(rows.size());
     const std::size_t n = rows.size();
     response_.resize(n);
-    b_.assign(n, 0);
+    b_.resize(n);  // set by setVelocityRhs or setPositionRhs before any solve reads it
     lo_.resize(n);
     hi_.resize(n);
     mu_.resize(n);
