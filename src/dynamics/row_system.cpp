@@ -43,16 +43,22 @@ void RowSystem::buildResponses(const ConstraintRows& rows, std::span<const Rigid
                                std::span<const Mat3> inertia) {
     n_ = static_cast<int>(rows.size());
     const std::size_t n = rows.size();
-    response_.resize(n);
-    b_.resize(n);  // set by setVelocityRhs or setPositionRhs before any solve reads it
-    lo_.resize(n);
-    hi_.resize(n);
-    mu_.resize(n);
-    cfm_.resize(n);
-    findex_.resize(n);
+    // Grown, never shrunk: the loop below writes the first n of each, and setVelocityRhs or
+    // setPositionRhs b's, before anything reads them, so zeroing what a resize adds would be
+    // wasted (the row count swings between the velocity solve and the projection passes).
+    const auto grow = [n](auto& v) {
+        if (v.size() < n) v.resize(n);
+    };
+    grow(response_);
+    grow(b_);
+    grow(lo_);
+    grow(hi_);
+    grow(mu_);
+    grow(cfm_);
+    grow(findex_);
+    grow(rowBodies_);
     x_.resize(n);
     states_.resize(n);
-    rowBodies_.resize(n);
 
     // Through local pointers: a store through a member vector's data could, for all the compiler
     // knows, change the vectors themselves (the rows' too), which it would then reload for every row (resting
@@ -138,18 +144,20 @@ void RowSystem::setPositionRhs(const ConstraintRows& rows) {
 }
 
 LcpProblem RowSystem::problem() const {
-    const bool coupled = std::any_of(findex_.begin(), findex_.end(), [](int f) { return f >= 0; });
+    const std::size_t n = static_cast<std::size_t>(n_);
+    const std::span<const int> findex = std::span(findex_).first(n);
+    const bool coupled = std::any_of(findex.begin(), findex.end(), [](int f) { return f >= 0; });
     LcpProblem p;
     p.size = n_;
     p.a = a_;
-    p.b = b_;
-    p.lo = lo_;
-    p.hi = hi_;
+    p.b = std::span(b_).first(n);
+    p.lo = std::span(lo_).first(n);
+    p.hi = std::span(hi_).first(n);
     if (coupled) {
-        p.findex = findex_;
-        p.mu = mu_;
+        p.findex = findex;
+        p.mu = std::span(mu_).first(n);
     }
-    p.cfm = cfm_;
+    p.cfm = std::span(cfm_).first(n);
     return p;
 }
 
@@ -163,7 +171,7 @@ void accumulateResponses(std::span<const ConstraintRow> rows, std::span<const Ro
 void RowSystem::applyImpulses(const ConstraintRows& rows, std::span<RigidBody> bodies) {
     linearShift_.resize(bodies.size());
     angularShift_.resize(bodies.size());
-    accumulateResponses(rows.all(), response_, x_, linearShift_, angularShift_);
+    accumulateResponses(rows.all(), responses(), x_, linearShift_, angularShift_);
     for (std::size_t k = 0; k < bodies.size(); ++k) {
         bodies[k].linearVelocity += linearShift_[k];
         bodies[k].angularVelocity += angularShift_[k];
@@ -175,7 +183,7 @@ void RowSystem::applyDisplacements(std::span<RigidBody> bodies) {
     linearShift_.resize(bodies.size());
     angularShift_.resize(bodies.size());
     accumulate(
-        rowBodies_.size(), [&](std::size_t i) { return rowBodies_[i]; }, response_, x_, linearShift_, angularShift_);
+        x_.size(), [&](std::size_t i) { return rowBodies_[i]; }, responses(), x_, linearShift_, angularShift_);
     for (std::size_t k = 0; k < bodies.size(); ++k) displaceBody(bodies[k], linearShift_[k], angularShift_[k]);
 }
 

@@ -113,7 +113,7 @@ public:
     void applyDisplacements(std::span<RigidBody> bodies);
 
     const RowResponse& response(std::size_t row) const { return response_[row]; }
-    std::span<const RowResponse> responses() const { return response_; }
+    std::span<const RowResponse> responses() const { return std::span(response_).first(static_cast<std::size_t>(n_)); }
 
     // Each body's RigidBody::inverseInertiaWorld at its current pose, computed once per body, for
     // writing or reading many rows at one pose. Valid until the next call of this or of build
