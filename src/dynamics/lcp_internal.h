@@ -24,9 +24,10 @@
 namespace af::lcp {
 
 // For workspaces whose every cell is written before it is read (here A in pivot order, L, the link
-// columns; the sparse solver's forwarded columns and dense core), so growing them need not zero them. Zeroing was most of the cost of the step where
-// a solver first met a larger problem (bench single step 34: 0.69M of 6.8M instructions, when the
-// tree solver's pivoting solver first grew to its auxiliary rows).
+// columns; the sparse solver's forwarded columns and dense core), so growing them need not zero
+// them. Zeroing was most of the cost of the step where a solver first met a larger problem (bench
+// single step 34: 0.69M of 6.8M instructions, when the tree solver's pivoting solver first grew to
+// its auxiliary rows).
 template <class T>
 struct UninitialisedAllocator : std::allocator<T> {
     template <class U>

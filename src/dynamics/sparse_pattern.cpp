@@ -94,7 +94,6 @@ bool SparseLcpSolver::solvePattern(std::span<const ConstraintRow> rows, std::spa
     forwarded_.assign(vars, 0);
     for (std::size_t j = 0; j < k; ++j) {
         x[static_cast<std::size_t>(slidingRows_[j])] = beta_[j];
-        use_[static_cast<std::size_t>(slidingRows_[j])] = 1;
         const std::span<const Real> column = path(j);
         for (const int g : support(j))
             for (int v = factor_.firstVariable(g); v < factor_.firstVariable(g + 1); ++v)
