@@ -102,6 +102,7 @@ private:
     // jointErrorsAtPoses: jointErrors_ are already measured at the bodies' current poses.
     void projectPositions(IslandContext& context, bool jointErrorsAtPoses);
     bool moveWhileImproving(Real& violation, IslandContext& context);
+    bool chordStep(Real& violation, IslandContext& context);
     void writeNormalsOnly();
     Real violationAtPoses(IslandContext& context);
     LcpStatus solvePositions();
