@@ -47,17 +47,25 @@ constexpr std::size_t kMaxCore = 96;
 
 }  // namespace
 
-int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
-                               const LcpProblem& problem, std::span<Real> x, std::span<LcpRowState> states,
-                               Real wTolerance, const LcpExactSettings& settings, SparseLcpResult& result) {
-    const std::size_t n = rows.size();
+// Marks in inCore_ the rows switched by the trials, those with fixed boxes and the sliding friction
+// rows (none without states), each with its normal and the normal's friction rows; returns how many.
+std::size_t SparseLcpSolver::markCore(const LcpProblem& problem, std::span<const LcpRowState> states) {
+    const std::size_t n = switched_.size();
     inCore_.assign(switched_.begin(), switched_.end());
     for (std::size_t i = 0; i < n; ++i)
-        if (sliding(problem, states, i) || fixedBox(problem, i)) inCore_[i] = 1;
+        if ((!states.empty() && sliding(problem, states, i)) || fixedBox(problem, i)) inCore_[i] = 1;
     for (std::size_t i = 0; i < n; ++i)  // a friction row's normal, then every friction row of a normal
         if (source(problem, i) >= 0 && inCore_[i]) inCore_[static_cast<std::size_t>(source(problem, i))] = 1;
     for (std::size_t i = 0; i < n; ++i)
         if (source(problem, i) >= 0 && inCore_[static_cast<std::size_t>(source(problem, i))]) inCore_[i] = 1;
+    return static_cast<std::size_t>(std::count(inCore_.begin(), inCore_.end(), std::uint8_t{1}));
+}
+
+int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
+                               const LcpProblem& problem, std::span<Real> x, std::span<LcpRowState> states,
+                               Real wTolerance, const LcpExactSettings& settings, SparseLcpResult& result) {
+    const std::size_t n = rows.size();
+    markCore(problem, states);
     lastCore_.swap(core_);
     lastCoreIndex_.swap(coreIndex_);
     core_.clear();

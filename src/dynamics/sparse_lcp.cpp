@@ -28,6 +28,13 @@ constexpr int kMaxTrials = 2;
 // give-ups in 108 steps). af-sim --solver tree: 1.04G instructions counted, 0.97G not; seeds 0-3,
 // 5 and 6: 2.69G, 2.67G.
 constexpr int kCoreAfterOneTrial = 32;
+// A first trial whose switched rows alone (with those the core takes anyway, see markCore) make a
+// core this large gives up: the second trial only adds rows, and the core then outgrows kMaxCore
+// (96, sparse_core.cpp) in the end. The caller's fallback starts from the step's guess, not from
+// the trials, so its answer is the same. Bench single and grid4, 600 steps: every first trial
+// past 32 wrong rows whose core already held 83 rows or more gave up after the second; the four
+// that went on to a core that held had 54-81 rows after the first trial, 65-85 after the second.
+constexpr std::size_t kHopelessCore = 84;
 // Times the dense core may grow by the rows its answer finds wrong outside it.
 constexpr int kCoreRounds = 4;
 // A guess is kept when its free rows' w are within this fraction of the tolerance. What a kept
@@ -187,6 +194,10 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
             if (normalPushes && states[i] == LcpRowState::AtLower && lo_[i] == hi_[i]) states[i] = LcpRowState::Free;
         }
         if (wrongOutsideCore <= kCoreAfterOneTrial) break;
+        if (trial < kMaxTrials && markCore(problem, {}) >= kHopelessCore) {
+            result.status = LcpStatus::NotConverged;
+            return result;
+        }
     }
     // The core, grown by the rows its answer finds wrong outside it, until it holds or is too large.
     for (int round = 0; round < kCoreRounds; ++round) {

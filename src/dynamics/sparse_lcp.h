@@ -76,6 +76,7 @@ private:
     int check(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
               std::span<const Real> x, std::span<const LcpRowState> states, Real wTolerance, Real tolerance);
     SparseLcpResult& finish(std::span<const Real> x, std::span<const LcpRowState> states, SparseLcpResult& result);
+    std::size_t markCore(const LcpProblem& problem, std::span<const LcpRowState> states);
     int solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
                   std::span<Real> x, std::span<LcpRowState> states, Real wTolerance, const LcpExactSettings& settings,
                   SparseLcpResult& result);
