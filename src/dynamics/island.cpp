@@ -128,10 +128,10 @@ void Island::writeRows(IslandContext& context, bool atStepStart) {
 }
 
 void Island::measureJointErrors(const IslandContext& context, bool keepRows) {
-    jointErrors_.clear();
-    errorRanges_.clear();
     if (!keepRows) {
         restRowsHeld_ = false;
+        jointErrors_.clear();
+        errorRanges_.clear();
         // Each body's rotation once, not once per joint side.
         rowRotations_.resize(bodies_.size());
         for (std::size_t b = 0; b < bodies_.size(); ++b) rowRotations_[b] = bodies_[b].rotation();
@@ -167,9 +167,6 @@ void Island::measureJointErrors(const IslandContext& context, bool keepRows) {
     }
     restSettings_ = context.settings.rows;
     restRowsHeld_ = true;
-    jointErrors_.resize(restRows_.size());
-    for (std::size_t i = 0; i < restRows_.size(); ++i) jointErrors_[i] = {restRows_[i].error, restRows_[i].lo, restRows_[i].hi};
-    errorRanges_.assign(restRanges_.begin(), restRanges_.end());
 }
 
 // The joint rows depend on the bodies' poses, masses and inertias, the joints' impulses (the
@@ -199,10 +196,16 @@ bool Island::restRowsHold(const IslandContext& context) const {
 // which cannot be the worst (the resting bench ragdoll: 34 of its 45 points).
 Real Island::measuredViolation(const IslandContext& context) const {
     Real worst = 0;
-    for (const RowError& r : jointErrors_) {
-        if (r.lo == 0 && r.hi == 0) continue;
-        worst = std::max(worst, r.lo == 0 ? -r.error : std::abs(r.error));
-    }
+    const auto jointViolation = [&worst](const auto& errors) {
+        for (const auto& r : errors) {
+            if (r.lo == 0 && r.hi == 0) continue;
+            worst = std::max(worst, r.lo == 0 ? -r.error : std::abs(r.error));
+        }
+    };
+    if (restRowsHeld_)
+        jointViolation(restRows_.all());
+    else
+        jointViolation(jointErrors_);
     std::size_t far = 0;  // farPoints_ are in the order of points_
     for (std::size_t k = 0; k < points_.size(); ++k) {
         if (farPointsApart_ && far < farPoints_.size() && farPoints_[far].point == k) {

@@ -68,13 +68,14 @@ private:
     // atStepStart: the bodies are at the poses the step's points were placed at (the velocity solves).
     void writeRows(IslandContext& context, bool atStepStart = false);
     // The joint rows' errors at the bodies' poses (jointErrors_, errorRanges_). With keepRows the
-    // joint rows are written whole (restRows_) for the next writeRows to take: a measure is
-    // mostly followed by rows at the same poses, a projection pass's or the next step's (bench
-    // drop: of a settling step's 4 to 6 joint row writes, all but SHAKE's capture and the measure
-    // between its two steps, which moves the bodies again).
+    // joint rows are written whole instead (restRows_, restRanges_, their errors read there) for
+    // the next writeRows to take: a measure is mostly followed by rows at the same poses, a
+    // projection pass's or the next step's (bench drop: of a settling step's 4 to 6 joint row
+    // writes, all but SHAKE's capture and the measure between its two steps, which moves the
+    // bodies again).
     void measureJointErrors(const IslandContext& context, bool keepRows = true);
     bool restRowsHold(const IslandContext& context) const;
-    // largestViolation() of the rows writeRows would write now, from jointErrors_ (measured at
+    // largestViolation() of the rows writeRows would write now, from the last measure (at
     // the current poses) and the contact points, without writing them. Not for an extra source.
     Real measuredViolation(const IslandContext& context) const;
     // A row's target before the velocity solve, from its Cdot at the current velocities and its
@@ -99,7 +100,7 @@ private:
     void writeJointRowsOnly(const IslandContext& context);
     std::span<const char> limitsToHold(const ConstraintRows& startRows, const std::vector<JointRowRange>& startRanges,
                                        const std::vector<JointRowRange>& moved);
-    // jointErrorsAtPoses: jointErrors_ are already measured at the bodies' current poses.
+    // jointErrorsAtPoses: the joint errors are already measured at the bodies' current poses.
     void projectPositions(IslandContext& context, bool jointErrorsAtPoses);
     bool moveWhileImproving(Real& violation, IslandContext& context);
     bool chordStep(Real& violation, IslandContext& context);

@@ -33,7 +33,7 @@ constexpr Real kShakeTolerance = 1e-9;  // length units: drift this small counts
 // Its move is trusted no more than the first's: a 20-link chain whipping round (world test,
 // tree solver) once had a remainder below 1e-9 turned into a move that blew it apart.
 //
-// Returns whether it moved the bodies; if not, jointErrors_ are those of the current poses.
+// Returns whether it moved the bodies; if not, the joint errors are measured at the current poses.
 bool Island::closeDrift(Real dt, IslandContext& context) {
     driftedLastStep_ = captureDrift(context);
     if (!driftedLastStep_) return false;
@@ -54,7 +54,7 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
 
 // When the joints drifted since the velocity solve, captures its rows (rows_, responses in
 // system_) for SHAKE and writes the joint rows at the moved poses for its first step; otherwise
-// returns false with jointErrors_ measured at the poses. A resting figure has no drift: it is
+// returns false with the joint errors measured at the poses. A resting figure has no drift: it is
 // measured first, rows_ left as the velocity solve wrote them (the measure's rows are kept for
 // the next step). A figure that drifted in its last step most likely drifts
 // again: its rows are written at once and give the drift, the velocity solve's rows kept for the
@@ -62,8 +62,8 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
 bool Island::captureDrift(const IslandContext& context) {
     if (!driftedLastStep_) {
         measureJointErrors(context);
-        if (ShakeCorrection::drift(rows_, ranges_, jointErrors_, errorRanges_) <= kShakeTolerance) return false;
-        shake_.capture(rows_, ranges_, system_, limitsToHold(rows_, ranges_, errorRanges_));
+        if (ShakeCorrection::drift(rows_, ranges_, restRows_, restRanges_) <= kShakeTolerance) return false;
+        shake_.capture(rows_, ranges_, system_, limitsToHold(rows_, ranges_, restRanges_));
         writeJointRowsOnly(context);
         return true;
     }
