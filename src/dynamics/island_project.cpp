@@ -111,18 +111,20 @@ Real Island::violationAtPoses(IslandContext& context) {
 // of the LCP would be violated, or the move does not lower the largest violation: a full pass
 // follows.
 bool Island::chordStep(Real& violation, IslandContext& context) {
-    if (errorRanges_.size() != ranges_.size()) return false;
+    // The last measure's errors: the kept rows' (measureJointErrors with keepRows) or the bare errors.
+    const std::vector<JointRowRange>& measuredRanges = restRowsHeld_ ? restRanges_ : errorRanges_;
+    if (measuredRanges.size() != ranges_.size()) return false;
     for (std::size_t k = 0; k < ranges_.size(); ++k) {
         const JointRowRange& a = ranges_[k];
-        const JointRowRange& b = errorRanges_[k];
+        const JointRowRange& b = measuredRanges[k];
         if (a.first != b.first || a.equalityRows != b.equalityRows || a.limitRows != b.limitRows ||
             a.frictionRows != b.frictionRows)
             return false;
     }
     const std::span<const ContactPoint> points = nearPointsOnly_ ? nearPoints_ : points_;
-    const std::size_t jointRows = jointErrors_.size();
+    const std::size_t jointRows = restRowsHeld_ ? restRows_.size() : jointErrors_.size();
     if (rows_.size() != jointRows + points.size()) return false;
-    for (std::size_t i = 0; i < jointRows; ++i) rows_[i].error = jointErrors_[i].error;
+    for (std::size_t i = 0; i < jointRows; ++i) rows_[i].error = restRowsHeld_ ? restRows_[i].error : jointErrors_[i].error;
     for (std::size_t k = 0; k < points.size(); ++k) {
         if (points[k].friction > 0) return false;
         rows_[jointRows + k].error = context.settings.contact.slop - currentDepth(points[k], bodies_);
