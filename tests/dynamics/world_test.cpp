@@ -107,20 +107,26 @@ TEST(WorldChain, TwentyLinksKeepTheirJointsWithinATenThousandthOfAUnit) {
 }
 
 // Released horizontally, a long chain whips its end round far faster than it fell: the joints
-// must hold and the motion must never have more energy than the fall released.
+// must hold and the motion must never have more energy than the fall released. The whip is
+// chaotic: release angles 1e-10 degrees apart end in different whips, and some (e.g. +21e-10)
+// spin the end links ~1.4 rad per step, which 8 projection passes did not close. One angle alone
+// passed or failed by luck, so several run.
 TEST(WorldChain, ChainReleasedHorizontallyWhipsWithoutGainingEnergy) {
-    World world(test::hangingChain(20, 300), test::dynamicsOnly());
-    test::swingAbout(world, Vec3(0, 0, 300), 90);
-    const Real start = test::potentialEnergy(world);
-    Real worstJoint = 0, worstGain = 0;
-    for (int i = 0; i < 600; ++i) {
-        world.step();
-        worstJoint = std::max(worstJoint, world.maxJointError());
-        worstGain = std::max(worstGain, test::potentialEnergy(world) + world.kineticEnergy() - start);
+    for (const int k : {-24, -13, -5, 0, 7, 15, 21, 23}) {
+        SCOPED_TRACE(k);
+        World world(test::hangingChain(20, 300), test::dynamicsOnly());
+        test::swingAbout(world, Vec3(0, 0, 300), 90 + k * 1e-10);
+        const Real start = test::potentialEnergy(world);
+        Real worstJoint = 0, worstGain = 0;
+        for (int i = 0; i < 600; ++i) {
+            world.step();
+            worstJoint = std::max(worstJoint, world.maxJointError());
+            worstGain = std::max(worstGain, test::potentialEnergy(world) + world.kineticEnergy() - start);
+        }
+        EXPECT_LT(worstJoint, 1e-4);
+        EXPECT_LE(worstGain, 1e-6 * std::abs(start)) << "energy gained " << worstGain;
+        EXPECT_EQ(world.solverFailures(), 0);
     }
-    EXPECT_LT(worstJoint, 1e-4);
-    EXPECT_LE(worstGain, 1e-6 * std::abs(start)) << "energy gained " << worstGain;
-    EXPECT_EQ(world.solverFailures(), 0);
 }
 
 TEST(WorldChain, TwoRunsAreBitIdentical) {
