@@ -105,11 +105,11 @@ Real Island::violationAtPoses(IslandContext& context) {
 // rows a move that small away differ from these by about as little, so the answer converges
 // linearly at a rate of about the move's relative size, one or two steps from 1e-6 to the
 // tolerance, without writing the rows, their responses or refactoring (bench single: a chord
-// step ~80k instructions, mostly the LCP's solve and the re-measure). The joint errors are those violationAtPoses measured (the rows writeRows would
-// write), the contact rows' those of their points. False, with the bodies where they were, when
-// the rows at the poses are not these (a limit row came or went), the tree fails, a row left out
-// of the LCP would be violated, or the move does not lower the largest violation: a full pass
-// follows.
+// step ~80k instructions, mostly the LCP's solve and the re-measure). The joint errors are those
+// violationAtPoses measured (the rows writeRows would write), the contact rows' those of their
+// points. False, with the bodies where they were, when the rows at the poses are not these (a
+// limit row came or went), the tree fails, a row left out of the LCP would be violated, or the
+// move does not lower the largest violation: a full pass follows.
 bool Island::chordStep(Real& violation, IslandContext& context) {
     // The last measure's errors: the kept rows' (measureJointErrors with keepRows) or the bare errors.
     const std::vector<JointRowRange>& measuredRanges = restRowsHeld_ ? restRanges_ : errorRanges_;
