@@ -41,17 +41,17 @@ int WarmStartCache::recall(std::span<const std::uint64_t> keys, std::span<LcpRow
         if (at >= count || entries[at].key != key[i]) {
             sort();
             const auto k = std::lower_bound(byKey_.begin(), byKey_.end(), std::make_pair(key[i], std::size_t(0)));
-            at = k != byKey_.end() && k->first == key[i] ? k->second : count;
+            if (k == byKey_.end() || k->first != key[i]) {
+                state[i] = LcpRowState::Unknown;
+                impulse[i] = 0;
+                continue;
+            }
+            at = k->second;  // the index holds entries_'s keys (sort), so entries[at] has key[i]
         }
-        if (at < count && entries[at].key == key[i]) {
-            state[i] = entries[at].state;
-            impulse[i] = entries[at].impulse;
-            next = at + 1;
-            ++found;
-        } else {
-            state[i] = LcpRowState::Unknown;
-            impulse[i] = 0;
-        }
+        state[i] = entries[at].state;
+        impulse[i] = entries[at].impulse;
+        next = at + 1;
+        ++found;
     }
     return found;
 }
