@@ -27,7 +27,8 @@
 // bounds as well. Boxes that cycle are damped (see solveWithFrozenBoxes). The boxes converge
 // only linearly, so each pass that keeps the pattern it started from hands that pattern to a
 // short coupled try (usually one pass, no pivots); when the passes run out, the coupled passes
-// take over from the last pattern.
+// take over from the last pattern. A warm-started solve that still does not settle starts once
+// more from cold, for kColdStartPasses passes.
 
 #include "dynamics/lcp_internal.h"
 
@@ -55,6 +56,14 @@ constexpr Real kMinBoxBlend = 0.25;
 // A pattern whose try failed is not tried again until a pass changes it (a landing kept one
 // pattern for 20 passes and tried it each time: 139 pivots and a factorisation per try).
 constexpr int kCoupledTryPasses = 2;
+// Coupled passes of the cold start after a warm-started solve failed. af-sim --seed 34's failed
+// dense solve: from the guess (a step old, 58 of 183 rows wrong) the passes released a friction
+// row, then it and a joint friction row, in turn for 16 passes, and the frozen boxes drifted off
+// the one pattern they kept; cold, 24 pivots in 2 passes (in that step the sparse path's core,
+// 47 rows, now settles cold in 19 pivots first). The cold starts that did not settle in 2 passes
+// did not in 16 either (that drop's later landings: 965, 1674 and 1702 pivots for nothing; with
+// 2 passes 134, 281 and 278).
+constexpr int kColdStartPasses = 2;
 
 // The coupled passes from the last frozen pass's pattern (s.boxStates), at most
 // kCoupledTryPasses of them. On success x, ioStates and result hold the answer; otherwise only
@@ -109,6 +118,9 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
 
     // Pivots of the attempts before the last load: a guess that did not hold, the frozen boxes.
     int  earlierPivots = 0;
+    // Whether the last passes started from a guess: only a guess can lead them astray, and a
+    // failed cold start is not tried again. Until the frozen boxes, ioStates holds the caller's.
+    bool guessed = false;
     const bool tryFrozenBoxes =
         !problem.findex.empty() && !ioStates.empty() && s.settings.frictionBoxPasses > 0;
 
@@ -125,8 +137,21 @@ LcpResult LcpExactSolver::solve(const LcpProblem& problem, std::span<Real> outX,
             return settled;
         }
         earlierPivots += frozen.pivots;
+        guessed = true;  // the last pattern of the frozen boxes, whatever the caller's was
         s.load(problem, ioStates);
         s.settle(false, status, result.couplingPasses);
+    }
+    if (status == LcpStatus::NotConverged &&
+        (guessed || std::any_of(ioStates.begin(), ioStates.end(),
+                                [](LcpRowState state) { return state != LcpRowState::Unknown; }))) {
+        // A guess can lead the coupled passes into a cycle that a cold start, normals first and
+        // friction after them, never enters; only failed solves pay for the try.
+        earlierPivots += s.pivots;
+        s.load(problem, {});
+        const int maxPasses = std::exchange(s.settings.maxCouplingPasses,
+                                            std::min(kColdStartPasses, s.settings.maxCouplingPasses));
+        s.settle(false, status, result.couplingPasses);
+        s.settings.maxCouplingPasses = maxPasses;
     }
     s.finish(problem, outX, ioStates, result, status);
     result.pivots += earlierPivots;

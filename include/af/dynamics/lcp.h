@@ -133,7 +133,8 @@ struct LcpExactSettings {
 ///   as NotConverged (on random dense test problems with mu ≤ 1.2, about 1 in 10⁴).
 /// * Warm start: pass the row states of a previous solve in ioStates; the solver factorises that
 ///   pattern directly and only pivots the rows the guess got wrong. Solving the same problem
-///   again from its own states takes zero pivots.
+///   again from its own states takes zero pivots. A coupled problem that does not settle from
+///   the guess is tried once more from cold, for a few passes (a guess can lead into a cycle).
 /// * Failures are reported, never hidden: see LcpStatus and LcpResult::failedRows.
 ///
 /// No heap allocation happens inside solve() once reserve(n) has been called for n ≥ the problem
