@@ -183,7 +183,11 @@ bool TreeFactor::factor(const Forest& forest, const ConstraintRows& rows, std::s
                 up.topLeftCorner<k, k>().noalias() -= f.topRows<k>() * e.topRows<k>().transpose();
             } else {
                 f.leftCols<k>().noalias() = e.leftCols<k>() * dinv_[i].topLeftCorner<k, k>();
-                up.noalias() -= f.leftCols<k>() * e.leftCols<k>().transpose();
+                // invert reads only the lower triangle of a body's block, so most of the top right
+                // 3×3 is skipped; rows 2-5 keep Eigen's two-row packets, and so the same sums.
+                up.leftCols<3>().noalias() -= f.leftCols<k>() * e.leftCols<k>().template topRows<3>().transpose();
+                up.block<4, 3>(2, 3).noalias() -=
+                    f.leftCols<k>().template middleRows<4>(2) * e.leftCols<k>().template bottomRows<3>().transpose();
             }
         });
     }
