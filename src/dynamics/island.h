@@ -95,6 +95,7 @@ private:
     bool bringBackClosingPoints(Real dt, const IslandContext& context);
     bool closeDrift(Real dt, IslandContext& context);
     bool captureDrift(const IslandContext& context);
+    bool keepsMoreEnergy(Real dt, const IslandContext& context);
     // The joints' rows alone at the bodies' poses, without keys: what SHAKE reads. rows_ is whole
     // again after the next writeRows.
     void writeJointRowsOnly(const IslandContext& context);
@@ -190,6 +191,7 @@ private:
     LcpPgsSolver pgs_;
     RowPgs rowPgs_;
     ShakeCorrection shake_;
+    ShakeCorrection keptEnergy_;  // projects velocities onto the joints at the moved poses
     bool driftedLastStep_ = false;  // SHAKE had a drift to close in the last step
     // The velocity solve's rows, kept for SHAKE's capture while the joint rows are written at the
     // moved poses (see closeDrift).

@@ -408,18 +408,41 @@ ShakeCorrection::Step ShakeCorrection::apply(const ConstraintRows& rows, const s
     if (step.drift <= closed) return step;
     // Later steps after a capture reuse the first one's factors (simplified Newton): the bodies
     // have moved since only by a correction the size of the drift, which changes K by as little.
-    if (!factorised_) {
-        singular_ = false;
-        for (std::size_t b = 0; b < blockCount_; ++b) {
-            Block& block = blocks_[b];
-            block.k.resize(static_cast<std::size_t>(block.size) * static_cast<std::size_t>(block.size));
-            fillBlock(block, rows, block.k);
-            singular_ = singular_ || !factorBlock(block, block.k);
-        }
-        factorised_ = true;
-    }
+    if (!factorised_) factorise(rows);
     move(bodies, dt, step);
     return step;
+}
+
+void ShakeCorrection::factorise(const ConstraintRows& rows) {
+    singular_ = false;
+    for (std::size_t b = 0; b < blockCount_; ++b) {
+        Block& block = blocks_[b];
+        block.k.resize(static_cast<std::size_t>(block.size) * static_cast<std::size_t>(block.size));
+        fillBlock(block, rows, block.k);
+        singular_ = singular_ || !factorBlock(block, block.k);
+    }
+    factorised_ = true;
+}
+
+Real ShakeCorrection::keptKineticEnergy(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
+                                        std::span<const RigidBody> bodies) {
+    Step unused;
+    measureDrift(
+        ranges, [&](std::size_t r) { return rows[r].error; }, [](std::size_t, std::size_t) { return true; }, unused);
+    // The rows' velocities take the place of the drift: λ = −K⁻¹ J v is the projection's impulse.
+    for (std::size_t c = 0; c < start_.size(); ++c) drift_[c] = rowVelocity(rows[nowRow_[c]], bodies);
+    factorise(rows);
+    if (singular_) return kInfinity;
+    solveLambda();
+    sumResponses(bodies.size());
+    Real kept = 0;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        RigidBody body = bodies[b];
+        body.linearVelocity += linear_[b];
+        body.angularVelocity += angular_[b];
+        kept += body.kineticEnergy();
+    }
+    return kept;
 }
 
 ShakeCorrection::Step ShakeCorrection::applyAgain(std::span<const RowError> errors, const std::vector<JointRowRange>& ranges,
@@ -434,14 +457,8 @@ ShakeCorrection::Step ShakeCorrection::applyAgain(std::span<const RowError> erro
     return step;
 }
 
-// λ = −K⁻¹ drift_ with the factors of K; the bodies move by M⁻¹J₀ᵀλ and their velocities
-// change by the equality rows' share of it over dt.
-void ShakeCorrection::move(std::span<RigidBody> bodies, Real dt, Step& step) {
-    if (singular_) {
-        // No finite move closes this drift: report one too large to be kept.
-        step.move = kInfinity;
-        return;
-    }
+// λ = −K⁻¹ drift_ with the factors of K.
+void ShakeCorrection::solveLambda() {
     const std::size_t n = start_.size();
     lambda_.resize(n);
     for (std::size_t b = 0; b < blockCount_; ++b) {
@@ -452,12 +469,16 @@ void ShakeCorrection::move(std::span<RigidBody> bodies, Real dt, Step& step) {
         solveBlock(block, block.k, y_.data());
         for (int p = 0; p < block.size; ++p) lambda_[static_cast<std::size_t>(captured[p])] = y_[static_cast<std::size_t>(p)];
     }
+}
 
-    // The whole move and the held limits' share of it, summed in one pass over the rows in the
-    // order accumulateResponses (row_system.h) takes, so each sum is the same to the bit.
-    for (std::vector<Vec3>* sum : {&linear_, &angular_}) sum->assign(bodies.size(), Vec3::Zero());
+// Per body, λ times the rows' responses (linear_, angular_) and the held limits' share of it,
+// summed in one pass over the rows in the order accumulateResponses (row_system.h) takes, so
+// each sum is the same to the bit.
+void ShakeCorrection::sumResponses(std::size_t bodies) {
+    const std::size_t n = start_.size();
+    for (std::vector<Vec3>* sum : {&linear_, &angular_}) sum->assign(bodies, Vec3::Zero());
     if (heldLimits_)
-        for (std::vector<Vec3>* sum : {&limitLinear_, &limitAngular_}) sum->assign(bodies.size(), Vec3::Zero());
+        for (std::vector<Vec3>* sum : {&limitLinear_, &limitAngular_}) sum->assign(bodies, Vec3::Zero());
     for (std::size_t c = 0; c < n; ++c) {
         const Real l = lambda_[c];
         if (l == 0) continue;
@@ -476,6 +497,18 @@ void ShakeCorrection::move(std::span<RigidBody> bodies, Real dt, Step& step) {
         add(row.bodyA, m.linearA, m.angularA);
         add(row.bodyB, m.linearB, m.angularB);
     }
+}
+
+// λ = −K⁻¹ drift_ with the factors of K; the bodies move by M⁻¹J₀ᵀλ and their velocities
+// change by the equality rows' share of it over dt.
+void ShakeCorrection::move(std::span<RigidBody> bodies, Real dt, Step& step) {
+    if (singular_) {
+        // No finite move closes this drift: report one too large to be kept.
+        step.move = kInfinity;
+        return;
+    }
+    solveLambda();
+    sumResponses(bodies.size());
     // Read into locals: the call to displaceBody (out of line) would otherwise make heldLimits_
     // and step.move load (and the latter store) again for each body.
     const bool held = heldLimits_;

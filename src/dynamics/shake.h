@@ -12,8 +12,9 @@
 // hundreds of swings.
 //
 // When J₁ M⁻¹ J₀ᵀ is ill-conditioned (long chains turning fast), Newton's move can be far larger
-// than the drift it closes, and its velocity feeds the motion that caused it. Such a move is
-// refused: see World's use of accepted().
+// than the drift it closes, and its velocity feeds the motion that caused it; at fast turns its
+// velocity can also add kinetic energy the next step does not take back. Such a move is refused:
+// see Island::closeDrift and keptKineticEnergy().
 
 #include "af/dynamics/joints.h"
 #include "joint_errors.h"
@@ -67,6 +68,14 @@ public:
     Step applyAgain(std::span<const RowError> errors, const std::vector<JointRowRange>& ranges, std::span<RigidBody> bodies,
                     Real dt);
 
+    // The kinetic energy the bodies keep when their velocities are projected M-orthogonally onto
+    // the tangent space of the equality rows capture() took (J v = 0; capture them from rows
+    // written at the bodies' poses, with their responses): what a velocity solve on those rows
+    // alone leaves of the bodies' motion. +∞ if K is singular. Factorises K afresh: apply() and
+    // applyAgain() must not follow before the next capture.
+    Real keptKineticEnergy(const ConstraintRows& rows, const std::vector<JointRowRange>& ranges,
+                           std::span<const RigidBody> bodies);
+
 private:
     // K = J₁ M⁻¹ J₀ᵀ couples two joints' rows only when the joints share a body. Eliminating the
     // joints in a perfect order (a joint at the world or at a leaf body first: its neighbours
@@ -97,6 +106,9 @@ private:
     void eliminate(int group);
     template <class ErrorOf, class SameLimit>
     bool measureDrift(const std::vector<JointRowRange>& ranges, ErrorOf errorOf, SameLimit sameLimit, Step& step);
+    void factorise(const ConstraintRows& rows);
+    void solveLambda();
+    void sumResponses(std::size_t bodies);
     void move(std::span<RigidBody> bodies, Real dt, Step& step);
     void fillBlock(const Block& block, const ConstraintRows& rows, std::vector<Real>& k) const;
     bool factorBlock(const Block& block, std::vector<Real>& k) const;
