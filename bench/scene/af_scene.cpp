@@ -1,9 +1,7 @@
 #include "af_scene.h"
 
-#include "af/geometry/math.h"
 #include "af/geometry/shapes.h"
 
-#include <cmath>
 #include <numbers>
 
 namespace benchscene {
@@ -32,17 +30,6 @@ af::FigureBody makeBody(const BoxBody& box, const Placement& pl, int index) {
     return b;
 }
 
-// The roll Doom's pyramid basis needs (joint_make.cpp): the basis is rotationFromAngles(pitch,
-// yaw, roll) of the axis, base = its left column. Find the roll that puts base along `base`.
-double pyramidRollDegrees(const af::Vec3& axis, const af::Vec3& base) {
-    const double yaw = std::atan2(axis.y(), axis.x()) * kDegPerRad;
-    const double pitch = -std::atan2(axis.z(), std::hypot(axis.x(), axis.y())) * kDegPerRad;
-    const af::Vec3 left = af::rotationFromAngles(pitch, yaw, 0).col(1);
-    const double turn = std::atan2(axis.dot(left.cross(base)), left.dot(base)) * kDegPerRad;
-    const auto miss = [&](double roll) { return (af::rotationFromAngles(pitch, yaw, roll).col(1) - base).norm(); };
-    return miss(turn) <= miss(-turn) ? turn : -turn;
-}
-
 af::FigureConstraint makeConstraint(const JointDef& j, const Placement& pl) {
     af::FigureConstraint c;
     c.name = j.name;
@@ -59,23 +46,16 @@ af::FigureConstraint makeConstraint(const JointDef& j, const Placement& pl) {
             // center = a3 − a1, halfWidth = a2 / 2 (joint_make.cpp).
             c.limitAngles = {0, (j.hi1 - j.lo1) * kDegPerRad, (j.lo1 + j.hi1) / 2 * kDegPerRad};
             break;
-        case JointKind::Universal: {
+        case JointKind::Universal:
+            // §2's universal joint is a Cardan cross with a range per axis: our Cardan extension
+            // (Doom's homokinetic joint lets the arms leave ⟂). Body1, the child, carries axis 2.
             c.type = af::ConstraintType::Universal;
-            const Vec3 shaft = j.axis1.cross(j.axis2);  // the locked twist axis, along the thigh
-            const Vec3 down = shaft.z() < 0 ? shaft : Vec3(-shaft);
-            c.shafts[0] = R * down;  // body1 (thigh) carries shaft 1; straight: shaft 2 = −shaft 1
-            c.shafts[1] = R * Vec3(-down);
-            // Pyramid centred on the thigh's direction at the middle of both ranges.
-            const Quat middle = Quat(Eigen::AngleAxisd((j.lo1 + j.hi1) / 2, j.axis1)) *
-                                Quat(Eigen::AngleAxisd((j.lo2 + j.hi2) / 2, j.axis2));
-            const Vec3 axis = middle * down;
-            const Vec3 abduction = j.axis1.cross(axis).normalized();  // where bending about a1 moves it
-            c.limit = af::LimitType::Pyramid;
-            c.limitAxis = R * axis;
-            c.limitAngles = {(j.hi1 - j.lo1) * kDegPerRad, (j.hi2 - j.lo2) * kDegPerRad,
-                             pyramidRollDegrees(axis, abduction)};
+            c.cardan = true;
+            c.shafts[0] = R * j.axis2;
+            c.shafts[1] = R * j.axis1;
+            c.cardanLower = {j.lo1 * kDegPerRad, j.lo2 * kDegPerRad};
+            c.cardanUpper = {j.hi1 * kDegPerRad, j.hi2 * kDegPerRad};
             break;
-        }
         case JointKind::ConeTwist:
             c.type = af::ConstraintType::BallAndSocket;
             c.shafts[0] = R * j.axis2;  // the bone, on the child

@@ -7,16 +7,11 @@
 //  * fixed → Fixed.
 //  * hinge [lo, hi] → Hinge with a V limit of the same interval: the af hinge angle is the
 //    right-handed rotation of body1 relative to body2 about the axis, the §2 angle.
-//  * universal → Universal with both shafts along the thigh (a1 × a2, the locked twist axis of
-//    §2 in the T-pose) and a pyramid limit on the thigh's direction, centred on the direction at
-//    the middle of both ranges, half-widths half the ranges, its faces turned so that the first
-//    bends about a1 (abduction) and the second about a2 (flexion). Not an exact match: our
-//    universal is homokinetic (no relative twist about the shafts), not the Hooke joint of §2
-//    (a1 ⟂ q a2), and the pyramid's face angles equal the §2 angles only along its two central
-//    planes. The benchmark's own metrics show the difference.
-//  * ball, cone + twist → BallAndSocket with a cone limit: bone axis b on the child within the
-//    cone angle of the cone axis c on the parent. Our ball joint has NO twist limit (Doom's has
-//    none either), so twist is free: the JSON says "twist_limited": false.
+//  * universal → Universal as our Cardan cross (FigureConstraint::cardan, joint_cardan.cpp):
+//    body1's arm a2, body2's arm a1, kept ⟂ (a1 ⟂ q a2), each §2 angle within its own range.
+//  * ball, cone + twist → BallAndSocket with a cone limit (bone axis b on the child within the
+//    cone angle of the cone axis c on the parent) and our twist limit (FigureConstraint::
+//    twistLimit, not in Doom's decl) of ±twist about the bone: the JSON says "twist_limited": true.
 
 #include "metrics.h"
 #include "scene_def.h"

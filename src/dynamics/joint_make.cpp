@@ -75,6 +75,27 @@ void setTwistLimit(const FigureConstraint& c, const SpawnFrame& a, const SpawnFr
     j.twistReferenceA = a.localDirection(Quat::FromTwoVectors(axis, shaft) * referenceB);
 }
 
+// Cardan cross (joint_cardan.cpp): each arm in its body's frame, and each body's spawn copies of
+// the other arm and of armB × armA, from which the angles are read. Arm A is made ⟂ to arm B, so
+// that the joint starts where it holds.
+void setCardan(const FigureConstraint& c, const SpawnFrame& a, const SpawnFrame& b, Joint& j) {
+    const Vec3 armB = c.shafts[1].normalized();
+    const Vec3 armA = (c.shafts[0] - c.shafts[0].dot(armB) * armB).normalized();
+    const Vec3 cross = armB.cross(armA);
+    j.axisA = a.localDirection(armA);
+    j.axisB = b.localDirection(armB);
+    j.referenceA = a.localDirection(armB);
+    j.referenceB = b.localDirection(armA);
+    j.cardan.enabled = true;
+    j.cardan.crossA = a.localDirection(cross);
+    j.cardan.crossB = b.localDirection(cross);
+    for (std::size_t k = 0; k < 2; ++k) {
+        j.cardan.lower[k] = radians(c.cardanLower[k]);
+        j.cardan.upper[k] = radians(c.cardanUpper[k]);
+    }
+    j.limit = LimitType::None;
+}
+
 // Fixed and slider: where B holds A's centre of mass, and A's orientation in B's frame.
 void setRelativePose(const SpawnFrame& a, const SpawnFrame& b, Joint& j) {
     j.anchorA = Vec3::Zero();
@@ -103,6 +124,11 @@ Joint makeJoint(const Figure& figure, const FigureConstraint& c) {
     case ConstraintType::Universal: {
         j.anchorA = a.localPoint(c.anchor);
         j.anchorB = b.localPoint(c.anchor);
+        j.friction = c.friction;
+        if (c.cardan) {
+            setCardan(c, a, b, j);
+            break;
+        }
         const Vec3 s1 = c.shafts[0].normalized();
         const Vec3 s2 = c.shafts[1].normalized();
         j.axisA = a.localDirection(s1);
@@ -119,7 +145,6 @@ Joint makeJoint(const Figure& figure, const FigureConstraint& c) {
         j.relative = Quat(Mat3(localB * localA.transpose())).normalized();
         j.limitShaft = j.axisA;
         setShaftLimit(figure, c, b, j);
-        j.friction = c.friction;
         break;
     }
     case ConstraintType::Hinge: {

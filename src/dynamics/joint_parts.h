@@ -6,6 +6,7 @@
 #include "af/dynamics/joints.h"
 #include "joint_errors.h"
 
+#include <array>
 #include <cmath>
 #include <concepts>
 #include <numbers>
@@ -148,11 +149,15 @@ JointRowRange writeFixedRows(const Joint&, const Pair&, const JointRowSettings&,
 JointRowRange writeSliderRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
 JointRowRange writeBallRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
 JointRowRange writeUniversalRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
+JointRowRange writeCardanRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
 JointRowRange writeHingeRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
 JointRowRange writeSpringRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);
 
 Real sliderOffAxisDistance(const Joint&, const Pair&);
 Real universalTwist(const Joint&, const Pair&);
+std::array<Real, 2> cardanAnglesOf(const Joint&, const Pair&);
+Real cardanArmsError(const Joint&, const Pair&);  // radians from ⟂
+Real cardanLimitViolation(const Joint&, const Pair&);
 Real hingeAngleOf(const Joint&, const Pair&);
 Real hingeLimitViolation(const Joint&, const Pair&);
 Real springLengthOf(const Joint&, const Pair&);

@@ -16,7 +16,9 @@ JointRowRange writeRows(const Joint& joint, const Pair& pair, const JointRowSett
     switch (joint.type) {
     case ConstraintType::Fixed: range = writeFixedRows(joint, pair, settings, out); break;
     case ConstraintType::BallAndSocket: range = writeBallRows(joint, pair, settings, out); break;
-    case ConstraintType::Universal: range = writeUniversalRows(joint, pair, settings, out); break;
+    case ConstraintType::Universal:
+        range = joint.cardan.enabled ? writeCardanRows(joint, pair, settings, out) : writeUniversalRows(joint, pair, settings, out);
+        break;
     case ConstraintType::Hinge: range = writeHingeRows(joint, pair, settings, out); break;
     case ConstraintType::Slider: range = writeSliderRows(joint, pair, settings, out); break;
     case ConstraintType::Spring: range = writeSpringRows(joint, pair, settings, out); break;
@@ -78,7 +80,8 @@ Real jointAngularError(const Joint& joint, std::span<const RigidBody> bodies) {
         const Vec3 hB = pair.b.direction(joint.axisB);
         return std::atan2(hA.cross(hB).norm(), hA.dot(hB));
     }
-    case ConstraintType::Universal: return std::fabs(universalTwist(joint, pair));
+    case ConstraintType::Universal:
+        return joint.cardan.enabled ? cardanArmsError(joint, pair) : std::fabs(universalTwist(joint, pair));
     default: return 0;
     }
 }
@@ -88,13 +91,18 @@ Real limitViolationDegrees(const Joint& joint, std::span<const RigidBody> bodies
     switch (joint.type) {
     case ConstraintType::BallAndSocket:
         return degrees(std::max(shaftLimitViolation(joint, pair), twistLimitViolation(joint, pair)));
-    case ConstraintType::Universal: return degrees(shaftLimitViolation(joint, pair));
+    case ConstraintType::Universal:
+        return degrees(joint.cardan.enabled ? cardanLimitViolation(joint, pair) : shaftLimitViolation(joint, pair));
     case ConstraintType::Hinge: return degrees(hingeLimitViolation(joint, pair));
     default: return 0;
     }
 }
 
 Real hingeAngle(const Joint& joint, std::span<const RigidBody> bodies) { return hingeAngleOf(joint, pairOf(joint, bodies)); }
+
+std::array<Real, 2> cardanAngles(const Joint& joint, std::span<const RigidBody> bodies) {
+    return cardanAnglesOf(joint, pairOf(joint, bodies));
+}
 
 Real twistAngle(const Joint& joint, std::span<const RigidBody> bodies) { return twistAngleOf(joint, pairOf(joint, bodies)); }
 

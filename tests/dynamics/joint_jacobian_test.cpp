@@ -136,6 +136,21 @@ TEST(JointJacobian, UniversalConeAndPyramidLimitRowsAreTheDerivativeOfTheirError
     expectDerivatives([](Random& r, int body2) { return universal(r, body2, LimitType::Pyramid); }, 6);
 }
 
+// Both angle ranges are written (allLimitRows), and knocked out of place the arms are not ⟂.
+TEST(JointJacobian, CardanArmsRowAndBothAngleLimitRowsAreTheDerivativeOfTheirErrors) {
+    expectDerivatives(
+        [](Random& r, int body2) {
+            FigureConstraint c = withAnchor(ConstraintType::Universal, r, body2);
+            c.cardan = true;
+            c.shafts[1] = r.direction();
+            c.shafts[0] = c.shafts[1].unitOrthogonal();
+            c.cardanLower = {-20, -35};
+            c.cardanUpper = {40, 10};
+            return c;
+        },
+        6);
+}
+
 TEST(JointJacobian, HingeRowsAndVLimitRowAreTheDerivativeOfTheirErrors) {
     expectDerivatives(
         [](Random& r, int body2) {

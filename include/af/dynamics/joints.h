@@ -54,6 +54,20 @@ struct HingeLimit {
     Real halfWidth = 0;
 };
 
+// Cardan (Hooke) universal joint, our extension (joint_cardan.cpp). The arms are the Joint's
+// axisA (A's, in A's frame) and axisB (B's, in B's frame), kept ⟂. Its angles θ0 (about B's arm)
+// and θ1 (about A's arm), right-handed and 0 at spawn, are those of the relative rotation
+// q = R(armB, θ0)·R(armA, θ1) of A against B: each side's spawn copies of the other arm
+// (referenceA: B's arm in A's frame, referenceB: A's arm in B's frame) and of armB × armA
+// (crossA, crossB) read them off. θk stays within [lower[k], upper[k]] where lower < upper.
+struct CardanJoint {
+    bool enabled = false;
+    Vec3 crossA = Vec3::UnitZ();
+    Vec3 crossB = Vec3::UnitZ();
+    Real lower[2] = {0, 0};
+    Real upper[2] = {0, 0};
+};
+
 struct SpringParameters {
     Real stretch = 0;     // force per squared unit of extension (Doom's law is quadratic)
     Real compress = 0;    // force per squared unit of compression
@@ -103,6 +117,7 @@ struct Joint {
     Vec3 twistReferenceA = Vec3::UnitX();
     Vec3 twistReferenceB = Vec3::UnitX();
 
+    CardanJoint cardan;
     SpringParameters spring;
 
     Real friction = 0;     // joint friction coefficient (ball, universal, hinge)
@@ -159,8 +174,8 @@ void applySpringForces(const Joint& joint, std::span<RigidBody> bodies);
 // outside [minLength, maxLength]. Length units.
 Real jointError(const Joint& joint, std::span<const RigidBody> bodies);
 // The rotational part, radians: fixed and slider: the angle of the relative rotation away from
-// spawn; hinge: the angle between the two copies of the axis; universal: the relative twist.
-// 0 for ball and spring.
+// spawn; hinge: the angle between the two copies of the axis; universal: the relative twist
+// (Cardan: how far the arms are from ⟂). 0 for ball and spring.
 Real jointAngularError(const Joint& joint, std::span<const RigidBody> bodies);
 // How far past its limit the joint is, in degrees; 0 inside the limit or without one.
 Real limitViolationDegrees(const Joint& joint, std::span<const RigidBody> bodies);
@@ -171,6 +186,9 @@ Real hingeAngle(const Joint& joint, std::span<const RigidBody> bodies);
 // Ball and socket: the twist angle of A about its shaft relative to B, swing taken out,
 // radians in (−π, π], 0 at spawn (defined whether or not the twist is limited).
 Real twistAngle(const Joint& joint, std::span<const RigidBody> bodies);
+// A Cardan universal joint's angles θ0 (about B's arm) and θ1 (about A's arm), radians in
+// (−π, π] (see CardanJoint).
+std::array<Real, 2> cardanAngles(const Joint& joint, std::span<const RigidBody> bodies);
 // Spring length |anchor2 − anchor1|.
 Real springLength(const Joint& joint, std::span<const RigidBody> bodies);
 

@@ -66,6 +66,14 @@ struct FigureConstraint {
     // Ball and socket, our extension (not in Doom's decl, so .af files leave it 0): the shaft
     // may twist about itself up to this many degrees either way from its spawn twist.
     Real twistLimit = 0;
+    // Universal joint, our extension (Doom's decl knows only its homokinetic joint): a Cardan
+    // (Hooke) cross instead. shafts[0] is then the cross's arm carried by body1, shafts[1] its arm
+    // carried by body2, ⟂ at spawn, and the joint keeps them ⟂. Its two angles, right-handed and
+    // 0 at spawn, are body1's turn relative to body2 about body2's arm, then about its own; each
+    // stays within [cardanLower[k], cardanUpper[k]] degrees (k = 0: about body2's arm, 1: about
+    // body1's arm) where lower < upper. `limit` is not read for a Cardan joint.
+    bool cardan = false;
+    std::array<Real, 2> cardanLower{}, cardanUpper{};
     Real stretch = 0, compress = 0, damping = 0, restLength = 0, minLength = 0, maxLength = 0;
     SourceLocation where;
 };
