@@ -3,23 +3,29 @@
 # one ragdoll scene of bench-scene.md, every engine/variant once, as a table plus the ratios of our
 # solvers' mean µs/step to Bullet si10's.
 #
+# With --instructions, every engine/variant runs once more under callgrind, counting the
+# instructions of its step calls alone (bench/scene/counted_step.h): a measure the machine's load
+# does not move, reported per step and as ratios to Bullet si10's too.
+#
 # usage: bench/compare.sh [--scene single|grid4|grid16|pile] [--steps N] [--max-seconds S]
-#                         [--sleep on|off] [--no-install]
+#                         [--sleep on|off] [--instructions] [--no-install]
 # env:   BUILD_DIR (default <repo>/build-bench), JOBS (default 2)
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BUILD_DIR:-$root/build-bench}
 jobs=${JOBS:-2}
-scene=single steps=600 max_seconds=120 sleep=off install=1
+scene=single steps=600 max_seconds=120 sleep=off install=1 instructions=0
 while [[ $# -gt 0 ]]; do
     case $1 in
         --scene) scene=$2; shift 2 ;;
         --steps) steps=$2; shift 2 ;;
         --max-seconds) max_seconds=$2; shift 2 ;;
         --sleep) sleep=$2; shift 2 ;;
+        --instructions) instructions=1; shift ;;
         --no-install) install=0; shift ;;
-        *) echo "usage: $0 [--scene S] [--steps N] [--max-seconds S] [--sleep on|off] [--no-install]" >&2; exit 2 ;;
+        *) echo "usage: $0 [--scene S] [--steps N] [--max-seconds S] [--sleep on|off] [--instructions] [--no-install]" >&2
+           exit 2 ;;
     esac
 done
 
@@ -27,6 +33,10 @@ if [[ $install == 1 ]] && ! pkg-config --exists ode bullet 2>/dev/null; then
     sudo=""
     [[ $(id -u) == 0 ]] || sudo=sudo
     $sudo apt-get install -y libode-dev libbullet-dev
+fi
+if [[ $instructions == 1 ]] && ! command -v valgrind >/dev/null; then
+    echo "compare.sh: --instructions needs valgrind (apt-get install valgrind)" >&2
+    exit 1
 fi
 
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DAF_BUILD_BENCH=ON >/dev/null
@@ -42,7 +52,9 @@ cmake --build "$build" -j"$jobs" --target "${targets[@]}" >/dev/null
 
 program() { find "$build" -type f -name "$1" -perm -u+x | head -n 1; }
 results=$(mktemp)
-trap 'rm -f "$results"' EXIT
+counts=$(mktemp)
+callgrind_dir=$(mktemp -d)
+trap 'rm -rf "$results" "$counts" "$callgrind_dir"' EXIT
 common=(--scene "$scene" --steps "$steps" --max-seconds "$max_seconds" --sleep "$sleep")
 for t in "${targets[@]}"; do
     exe=$(program "$t")
@@ -56,19 +68,34 @@ for t in "${targets[@]}"; do
         if ! "$exe" "${common[@]}" $r >>"$results"; then
             echo "compare.sh: $t $r failed" >&2
         fi
+        [[ $instructions == 1 ]] || continue
+        # One line per run: the instructions of its step calls, then its own JSON.
+        out="$callgrind_dir/callgrind.out"
+        if json=$(valgrind --tool=callgrind --collect-atstart=no --callgrind-out-file="$out" \
+                      "$exe" "${common[@]}" $r 2>/dev/null); then
+            echo "$(sed -n 's/^totals: *\([0-9]*\).*/\1/p' "$out") $json" >>"$counts"
+        else
+            echo "compare.sh: $t $r failed under callgrind" >&2
+        fi
     done
 done
 
-python3 - "$results" <<'PY'
+python3 - "$results" "$counts" <<'PY'
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1]) if l.strip().startswith("{")]
+counted = []
+for line in open(sys.argv[2]):
+    number, _, text = line.partition(" ")
+    if number.isdigit() and text.strip().startswith("{"):
+        counted.append((int(number), json.loads(text)))
 def num(v, f):
     return "-" if v is None else f.format(v)
 cols = [("engine", 18, "{}"), ("variant", 13, "{}"), ("us_mean", 9, "{:.1f}"), ("us_median", 9, "{:.1f}"),
-        ("joint_err_max_m", 15, "{:.3g}"), ("limit_viol_max", 14, "{:.3g}"),
+        ("joint_err_max_m", 15, "{:.3g}"), ("ang_err_max", 11, "{:.3g}"), ("limit_viol_max", 14, "{:.3g}"),
         ("ground_pen_max_m", 16, "{:.3g}"), ("energy_gain_J", 13, "{:.3g}"), ("rest_step", 9, "{}"),
         ("exploded", 8, "{}")]
 keys = {"us_mean": "us_per_step_mean", "us_median": "us_per_step_median", "limit_viol_max": "limit_viol_max_rad",
+        "ang_err_max": "joint_ang_err_max_rad",
         "energy_gain_J": "energy_gain_max_J"}
 print(f"scene {rows[0]['scene'] if rows else '?'}: µs per step (step call only), errors over the run")
 print(" ".join(f"{c:>{w}}" for c, w, _ in cols))
@@ -96,4 +123,15 @@ for r in rows:
     until, after = r.get("us_per_step_mean_until_rest"), r.get("us_per_step_mean_at_rest")
     print(f"  {r['engine']} {r['variant']}: {num(until, '{:.1f}')} until step {num(r.get('rest_step'), '{}')}, "
           f"{num(after, '{:.1f}')} after")
+if counted:
+    print("\ninstructions per step (callgrind, step calls only; the same for every run of a build):")
+    per_step = [(r, n / max(1, r["steps_done"])) for n, r in counted]
+    for r, k in per_step:
+        print(f"  {r['engine']} {r['variant']}: {k / 1e3:.1f}k")
+    base = [k for r, k in per_step if r["engine"] == "bullet-3.24" and r["variant"] == "si10"]
+    if base:
+        print(f"relative to bullet-3.24 si10 ({base[0] / 1e3:.1f}k):")
+        for r, k in per_step:
+            if r["engine"].startswith("af"):
+                print(f"  {r['engine']} {r['variant']}: {k / base[0]:.2f}x")
 PY

@@ -1,5 +1,6 @@
 #include "peer_common.h"
 
+#include "counted_step.h"
 #include "metrics.h"
 
 #include <chrono>
@@ -162,7 +163,10 @@ void runScene(const Options& o, std::string_view engine, int ragdolls, const Run
             break;
         }
         const auto t0 = Clock::now();
-        hooks.step();
+        {
+            const benchscene::CountedStep counted;
+            hooks.step();
+        }
         const auto t1 = Clock::now();
         hooks.read(states);
         metrics.addStep(states, std::chrono::duration<double>(t1 - t0).count(), hooks.contactDepth());

@@ -2,6 +2,7 @@
 // object of RunMetrics (engine "af", variant = solver). Only world.step() is timed.
 
 #include "af_scene.h"
+#include "counted_step.h"
 #include "metrics.h"
 
 #include <CLI/CLI.hpp>
@@ -56,7 +57,10 @@ int main(int argc, char** argv) {
             break;
         }
         const Clock::time_point t0 = Clock::now();
-        world.step();
+        {
+            const benchscene::CountedStep counted;
+            world.step();
+        }
         const Clock::time_point t1 = Clock::now();
         sparseFallbacks += world.lastStep().sparseFallbacks;
         treeFallbacks += world.lastStep().treeFallbacks;
