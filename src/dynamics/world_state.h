@@ -108,6 +108,7 @@ struct World::State {
     template <class Run>
     void forEachIsland(bool ofSearch, Run run);
     void settleNewContacts();
+    void findContactsAroundProjection();
     Real movePoses(Real& sinceSettled);
 };
 
