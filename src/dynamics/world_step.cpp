@@ -10,7 +10,9 @@ namespace af {
 
 namespace {
 
-constexpr Real kPenetrationTolerance = 1e-3;  // units beyond the contact slop worth another projection
+// Penetration beyond the contact slop worth another projection, as a fraction of the slop (0.001
+// units at Doom's 0.05): a length of its own would be 40 times looser in metres than in inches.
+constexpr Real kPenetrationTolerance = 0.02;
 // The start-of-step search looks this fraction of contactMargin farther than it must, so that
 // its answer stands while the bodies move less than that (see World::State::findContacts).
 constexpr Real kSearchSlack = 1e-4;
@@ -295,7 +297,7 @@ void World::State::settleNewContacts() {
     if (collision.bodyCount() == 0) return;
     Real sinceSettled = 0;
     const Real moved = movePoses(sinceSettled);
-    const Real allowed = settings.contact.slop + kPenetrationTolerance;
+    const Real allowed = settings.contact.slop * (1 + kPenetrationTolerance);
     const bool stayedApart = moved < settings.contactMargin / 4 && settings.contactMargin > 0;
     if (stayedApart && searchKept && sinceSettled <= settings.contactMargin * kSearchSlack / 2) {
         // The pairs are those the last settle looked at, and no body has moved more than σ/2

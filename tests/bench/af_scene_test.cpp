@@ -1,8 +1,8 @@
 // Our engine on the benchmark scene (a) `single` with the exact solver, judged by the scene's
 // own metrics (bench-scene.md §6). Measured when the hips became Cardan joints (Release, exact
-// solver, 600 steps): joint error 5.2e-11 m, locked rotations 8.1e-11 rad, limits (§2's angles)
-// exceeded by 9.0e-11 rad at most, ground penetration 1.27 mm (= the contact slop, 0.05 inch),
-// energy gain 4e-13 J, rest from step 107. Twist is limited by our ball joint's twist limit and
+// solver, 600 steps): joint error 1.3e-10 m, locked rotations 6.8e-11 rad, limits (§2's angles)
+// exceeded by 9.9e-11 rad at most, ground penetration 1.27 mm (= the contact slop, 0.05 inch),
+// energy gain 2e-12 J, rest from step 103. Twist is limited by our ball joint's twist limit and
 // the hips are our Cardan cross (neither is in Doom's decl), both set from §2.
 
 #include "af_scene.h"
@@ -98,8 +98,8 @@ TEST(AfBenchScene, TreeSolverDropsTheRagdollToRestWithTightJointsMostlyOnTheSpar
 
 // Sixteen ragdolls landing side by side (scene grid4): where a projection pushes bodies out of
 // one contact it must not push them into another that no search had seen yet. Measured: a
-// forearm 4.1 mm into the floor at step 66 when the projection's problem held only what touched,
-// 1.9 mm at most (within the slop and the projection's tolerance) with the pairs near it.
+// forearm 4.1 mm into the floor at step 66 when the projection's problem held only what touched;
+// with the pairs near it, the slop (1.27 mm) at most.
 TEST(AfBenchScene, SixteenRagdollsLandWithoutAProjectionPushingABodyIntoTheFloor) {
     af::World world = buildAfWorld("grid4", af::SolverKind::Tree, false);
     RunMetrics metrics(static_cast<int>(world.figures().size()));
@@ -112,7 +112,7 @@ TEST(AfBenchScene, SixteenRagdollsLandWithoutAProjectionPushingABodyIntoTheFloor
         metrics.addStep(states, 0, world.maxPenetration());
     }
     const af::WorldSettings& settings = world.settings();
-    EXPECT_LT(metrics.groundPenMax(), settings.contact.slop + 1e-3);  // m: the slop and the projection's tolerance
+    EXPECT_LT(metrics.groundPenMax(), settings.contact.slop * 1.02);  // the slop and the projection's tolerance
     EXPECT_LT(metrics.jointErrMax(), 1e-6);
     EXPECT_EQ(world.solverFailures(), 0);
 }
