@@ -108,7 +108,8 @@ struct World::State {
     template <class Run>
     void forEachIsland(bool ofSearch, Run run);
     void settleNewContacts();
-    void findContactsAroundProjection();
+    void searchAtPoses(Real margin);
+    void rememberSettled();
     Real movePoses(Real& sinceSettled);
 };
 

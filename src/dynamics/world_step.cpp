@@ -318,19 +318,18 @@ void World::State::settleNewContacts() {
             if (manifoldsOf != ManifoldsOf::Settled) settled.manifolds = found();
             collision.findContactsAgain(poses, 0, settled.manifolds);
         } else {
-            std::fill(reach.begin(), reach.end(), Real(0));
-            std::fill(moves.begin(), moves.end(), Vec3::Zero());
-            collision.findContacts(poses, moves, reach, 0, bodyAwake, settled.manifolds);
+            searchAtPoses(0);
         }
-        manifoldsOf = ManifoldsOf::Settled;
-        contacts.gather(settled.manifolds, bodies, materials);
-        settled.known = true;
-        settled.poses = poses;
-        settled.points.assign(contacts.points().begin(), contacts.points().end());
-        settled.penetration = af::maxPenetration(contacts.points(), bodies);
+        rememberSettled();
         if (settled.penetration <= allowed) return;
     }
-    findContactsAroundProjection();
+    // The projection moves bodies by about the depth it removes, more at the end of a lever: a
+    // pair apart at the poses but within twice that depth joins its problem, as a contact point
+    // apart (its row keeps the gap from closing), or the projection could push a body into a
+    // surface the search at margin 0 did not see (bench grid4: a forearm pushed 4.1 mm into the
+    // floor by the projection of another contact 19 mm deep). Only steps that project pay for it.
+    searchAtPoses(2 * af::maxPenetration(contacts.points(), bodies));
+    rememberSettled();
     forEachIsland(false, [&](Island& island, IslandContext& shared) {
         if (island.maxPenetration() <= allowed) return false;
         island.project(shared);
@@ -338,16 +337,15 @@ void World::State::settleNewContacts() {
     });
 }
 
-// The projection that follows moves bodies by about the depth it removes, more at the end of a
-// lever: a pair apart at the poses but within twice that depth joins its problem, as a contact
-// point apart (its row keeps the gap from closing), or the projection could push a body into a
-// surface the search at margin 0 did not see (bench grid4: a forearm pushed 4.1 mm into the
-// floor by the projection of another contact 19 mm deep). Only steps that project pay for it.
-void World::State::findContactsAroundProjection() {
-    const Real depth = af::maxPenetration(contacts.points(), bodies);
+// A whole search at the poses for the settle, the bodies taken as still, `margin` apart.
+void World::State::searchAtPoses(Real margin) {
     std::fill(reach.begin(), reach.end(), Real(0));
     std::fill(moves.begin(), moves.end(), Vec3::Zero());
-    collision.findContacts(poses, moves, reach, 2 * depth, bodyAwake, settled.manifolds);
+    collision.findContacts(poses, moves, reach, margin, bodyAwake, settled.manifolds);
+}
+
+// The settle's manifolds become the contacts, kept with the poses they were found at.
+void World::State::rememberSettled() {
     manifoldsOf = ManifoldsOf::Settled;
     contacts.gather(settled.manifolds, bodies, materials);
     settled.known = true;
