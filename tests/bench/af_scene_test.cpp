@@ -6,6 +6,7 @@
 // the hips are our Cardan cross (neither is in Doom's decl), both set from §2.
 
 #include "af_scene.h"
+#include "../dynamics/allocation_counter.h"
 
 #include <gtest/gtest.h>
 
@@ -115,6 +116,19 @@ TEST(AfBenchScene, SixteenRagdollsLandWithoutAProjectionPushingABodyIntoTheFloor
     EXPECT_LT(metrics.groundPenMax(), settings.contact.slop * 1.02);  // the slop and the projection's tolerance
     EXPECT_LT(metrics.jointErrMax(), 1e-6);
     EXPECT_EQ(world.solverFailures(), 0);
+}
+
+// Once a figure's largest structures have been seen (its rows, contacts and factorisations grow
+// their buffers while it settles), a step allocates nothing: the resting ragdoll's 100 steps
+// after it comes to rest (from step 103) make no heap allocation at all.
+TEST(AfBenchScene, ARestingRagdollStepsWithoutAllocating) {
+    af::World world = buildAfWorld("single", af::SolverKind::Tree, false);
+    for (int s = 0; s < 150; ++s) world.step();
+    const long before = af::test::gAllocations.load();
+    for (int s = 0; s < 100; ++s) world.step();
+    const long after = af::test::gAllocations.load();
+    EXPECT_EQ(after - before, 0);
+    for (const af::RigidBody& b : world.bodies()) EXPECT_LT(b.linearVelocity.norm(), 1e-6);  // m/s: at rest
 }
 
 }  // namespace
