@@ -21,6 +21,7 @@
 #include "af/dynamics/rigid_body.h"
 #include "af/figure/figure.h"
 
+#include <array>
 #include <span>
 #include <string>
 #include <vector>

@@ -13,6 +13,7 @@
 #include "af/text/decl_af.h"
 #include "af/text/diagnostics.h"
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
