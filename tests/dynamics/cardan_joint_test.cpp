@@ -13,11 +13,10 @@
 namespace af {
 namespace {
 
-using test::kPi;
+using test::deg;
 using test::rad;
+using test::turn;
 
-Quat turn(const Vec3& axis, Real radians) { return Quat(Eigen::AngleAxis<Real>(radians, axis.normalized())); }
-Real deg(Real radians) { return radians * 180 / kPi; }
 
 // A Cardan joint between body 0 (arm a) and body 1 or the world (arm b ⟂ a), both arms in world
 // space at spawn.
@@ -33,7 +32,7 @@ FigureConstraint cardanJoint(const Vec3& armA, const Vec3& armB, int body2) {
 // arms in world space at spawn), B now at qB.
 Quat orientationFor(Real theta0, Real theta1, const Vec3& a, const Vec3& b, const Quat& qA0, const Quat& qB0,
                     const Quat& qB) {
-    return (qB * qB0.conjugate() * turn(b, theta0) * turn(a, theta1) * qA0).normalized();
+    return (qB * qB0.conjugate() * turn(b, deg(theta0)) * turn(a, deg(theta1)) * qA0).normalized();
 }
 
 TEST(CardanJoint, ItsAnglesAreTheTurnsAboutBsArmThenAsOwnAndItsArmsStayPerpendicular) {

@@ -9,13 +9,13 @@
 // that the situation it tests really happened (the limit was reached, the joint was bent, the
 // pair tumbled), so that it can fail. Doom units: gravity 1066 units/s², 60 Hz steps.
 
+#include "joint_test_util.h"
 #include "world_test_util.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <numbers>
 #include <random>
 
 namespace af {
@@ -23,17 +23,14 @@ namespace {
 
 using test::afVector;
 using test::boxBodyText;
+using test::deg;
 using test::figureOfBlocks;
+using test::rad;
+using test::turn;
 
-constexpr Real kPi = std::numbers::pi_v<Real>;
-constexpr Real kDegree = kPi / 180;
-
-Real deg(Real radians) { return radians / kDegree; }
 Real angleBetween(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
 // The angle of a rotation, radians in [0, π].
 Real rotationAngle(const Quat& q) { return 2 * std::atan2(q.vec().norm(), std::fabs(q.w())); }
-// A rotation by `degrees` about `axis`.
-Quat turn(const Vec3& axis, Real degrees) { return Quat(Eigen::AngleAxis<Real>(degrees * kDegree, axis.normalized())); }
 
 // Sets body `index` turning rigidly about `pivot` at angular velocity `omega`.
 void spinAbout(World& world, int index, const Vec3& pivot, const Vec3& omega) {
@@ -797,7 +794,7 @@ TEST(ConstraintPhysicsJointFriction, EachHalfSwingLosesTwoFOverLOfAmplitude) {
     std::vector<Real> peaks;
     for (std::size_t i = 1; i + 1 < angles.size(); ++i) {
         const Real a = std::fabs(angles[i - 1]), b = std::fabs(angles[i]), c = std::fabs(angles[i + 1]);
-        if (!(b > a && b >= c) || b < 3 * kDegree) continue;  // turning points while clearly swinging
+        if (!(b > a && b >= c) || b < rad(3)) continue;  // turning points while clearly swinging
         const Real curvature = a - 2 * b + c;
         peaks.push_back(b - (a - c) * (a - c) / (8 * curvature));
     }

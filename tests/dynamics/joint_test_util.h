@@ -16,6 +16,9 @@ namespace af::test {
 
 inline constexpr Real kPi = std::numbers::pi_v<Real>;
 inline Real rad(Real degrees) { return degrees * kPi / 180; }
+inline Real deg(Real radians) { return radians * 180 / kPi; }
+// A rotation by `degrees` about `axis` (of any length).
+inline Quat turn(const Vec3& axis, Real degrees) { return Quat(Eigen::AngleAxis<Real>(rad(degrees), axis.normalized())); }
 
 // A figure of two bodies (A = body 0, B = body 1) with the given spawn poses and one constraint.
 // `c.body2` decides whether B or the world is the second body.

@@ -7,7 +7,6 @@
 namespace af::test {
 namespace {
 
-Quat turn(Real degrees, const Vec3& axis) { return Quat(Eigen::AngleAxis<Real>(rad(degrees), axis.normalized())); }
 
 TEST(JointTypes, EqualityRowCountsPerType) {
     struct Case {
@@ -68,8 +67,8 @@ TEST(JointTypes, RowsBetweenBodiesNameBothBodies) {
 TEST(JointTypes, SliderKeepsItsLineWhenTheBodiesAreTurnedDifferently) {
     // Doom stores the offset in body1's frame and reads it in body2's; with B turned 90° from A
     // that would move the line. Ours: zero error at spawn, and sliding along the axis is free.
-    const RigidPose a{Vec3(0, 0, 0), turn(90, Vec3::UnitZ()).toRotationMatrix()};
-    const RigidPose b{Vec3(3, 1, 0), turn(-60, Vec3::UnitX()).toRotationMatrix()};
+    const RigidPose a{Vec3(0, 0, 0), turn(Vec3::UnitZ(), 90).toRotationMatrix()};
+    const RigidPose b{Vec3(3, 1, 0), turn(Vec3::UnitX(), -60).toRotationMatrix()};
     FigureConstraint c = constraintOf(ConstraintType::Slider);
     c.axis = Vec3(1, 1, 0).normalized();
     const Figure f = twoBodyFigure(a, b, c);
@@ -84,7 +83,7 @@ TEST(JointTypes, SliderKeepsItsLineWhenTheBodiesAreTurnedDifferently) {
     EXPECT_NEAR(jointError(j, bodies), 0.75, 1e-9);
     // The line turns with B: turning B about its centre carries the line with it.
     bodies = spawnBodies(f);
-    const Quat q = turn(30, Vec3(0, 0, 1));
+    const Quat q = turn(Vec3(0, 0, 1), 30);
     turnBody(bodies, 1, q);
     bodies[0].position = bodies[1].position + q * (a.position - b.position) + 1.5 * (q * c.axis);
     turnBody(bodies, 0, q);
@@ -93,14 +92,14 @@ TEST(JointTypes, SliderKeepsItsLineWhenTheBodiesAreTurnedDifferently) {
 }
 
 TEST(JointTypes, FixedJointMeasuresDisplacementAndRotation) {
-    const RigidPose a{Vec3(1, 2, 3), turn(40, Vec3(1, 2, 0)).toRotationMatrix()};
-    const RigidPose b{Vec3(-2, 0, 1), turn(-70, Vec3(0, 1, 1)).toRotationMatrix()};
+    const RigidPose a{Vec3(1, 2, 3), turn(Vec3(1, 2, 0), 40).toRotationMatrix()};
+    const RigidPose b{Vec3(-2, 0, 1), turn(Vec3(0, 1, 1), -70).toRotationMatrix()};
     const Figure f = twoBodyFigure(a, b, constraintOf(ConstraintType::Fixed));
     const Joint j = makeJoints(f).at(0);
     std::vector<RigidBody> bodies = spawnBodies(f);
     EXPECT_NEAR(jointError(j, bodies), 0, 1e-9);
     EXPECT_NEAR(jointAngularError(j, bodies), 0, 1e-9);
-    turnBody(bodies, 0, turn(12, Vec3(3, -1, 2)));
+    turnBody(bodies, 0, turn(Vec3(3, -1, 2), 12));
     bodies[0].position += Vec3(0, 0.5, 0);
     EXPECT_NEAR(jointError(j, bodies), 0.5, 1e-9);
     EXPECT_NEAR(jointAngularError(j, bodies), rad(12), 1e-9);
@@ -128,8 +127,8 @@ TEST(JointTypes, UniversalJointLetsBothBodiesSwingWithoutTwist) {
     for (const Vec3& axis : {Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(-0.3, 1, 0)}) {
         for (const Real degrees : {10.0, 45.0, 80.0}) {
             std::vector<RigidBody> bodies = spawnBodies(s.figure);
-            turnBodyAbout(bodies, 0, turn(degrees, axis), Vec3::Zero());
-            turnBodyAbout(bodies, 1, turn(-degrees / 3, axis), Vec3::Zero());
+            turnBodyAbout(bodies, 0, turn(axis, degrees), Vec3::Zero());
+            turnBodyAbout(bodies, 1, turn(axis, -degrees / 3), Vec3::Zero());
             ConstraintRows rows;
             writeJointRows(s.joint, bodies, JointRowSettings{}, rows);
             for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(rows[i].error, 0, 1e-9) << degrees << "°, row " << i;
@@ -145,10 +144,10 @@ TEST(JointTypes, UniversalJointMeasuresTwistAboutTheShaftsAfterAnySwing) {
     for (const Real twist : {5.0, 30.0, -60.0}) {
         for (const Real swing : {0.0, 30.0, 70.0}) {
             std::vector<RigidBody> bodies = spawnBodies(s.figure);
-            turnBody(bodies, 0, turn(twist, Vec3::UnitZ()));
-            turnBodyAbout(bodies, 0, turn(swing, Vec3(1, 2, 0)), Vec3::Zero());
-            turnBodyAbout(bodies, 0, turn(-swing / 2, Vec3(0, 1, 0)), Vec3::Zero());
-            turnBodyAbout(bodies, 1, turn(-swing / 2, Vec3(0, 1, 0)), Vec3::Zero());
+            turnBody(bodies, 0, turn(Vec3::UnitZ(), twist));
+            turnBodyAbout(bodies, 0, turn(Vec3(1, 2, 0), swing), Vec3::Zero());
+            turnBodyAbout(bodies, 0, turn(Vec3(0, 1, 0), -swing / 2), Vec3::Zero());
+            turnBodyAbout(bodies, 1, turn(Vec3(0, 1, 0), -swing / 2), Vec3::Zero());
             EXPECT_NEAR(jointAngularError(s.joint, bodies), rad(std::fabs(twist)), 1e-9) << twist << "°, swing " << swing;
         }
     }
@@ -161,11 +160,11 @@ TEST(JointTypes, HingeMeasuresAxisMisalignmentAndAngle) {
     const Figure f = twoBodyFigure({Vec3(0, 0, -4), Mat3::Identity()}, {}, c);
     const Joint j = makeJoints(f).at(0);
     std::vector<RigidBody> bodies = spawnBodies(f);
-    turnBodyAbout(bodies, 0, turn(35, Vec3(0, 1, 0)), Vec3::Zero());
+    turnBodyAbout(bodies, 0, turn(Vec3(0, 1, 0), 35), Vec3::Zero());
     EXPECT_NEAR(hingeAngle(j, bodies), rad(35), 1e-9);
     EXPECT_NEAR(jointAngularError(j, bodies), 0, 1e-9);
     EXPECT_NEAR(jointError(j, bodies), 0, 1e-9);
-    turnBodyAbout(bodies, 0, turn(3, Vec3(1, 0, 0)), Vec3::Zero());
+    turnBodyAbout(bodies, 0, turn(Vec3(1, 0, 0), 3), Vec3::Zero());
     EXPECT_NEAR(jointAngularError(j, bodies), rad(3), 1e-9);
 }
 
