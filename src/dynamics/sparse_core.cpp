@@ -63,7 +63,8 @@ std::size_t SparseLcpSolver::markCore(const LcpProblem& problem, std::span<const
 
 int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
                                const LcpProblem& problem, std::span<Real> x, std::span<LcpRowState> states,
-                               Real wTolerance, const LcpExactSettings& settings, SparseLcpResult& result) {
+                               std::span<const LcpRowState> coreGuess, Real wTolerance, const LcpExactSettings& settings,
+                               SparseLcpResult& result) {
     const std::size_t n = rows.size();
     markCore(problem, states);
     lastCore_.swap(core_);
@@ -86,7 +87,7 @@ int SparseLcpSolver::solveCore(std::span<const ConstraintRow> rows, std::span<co
     for (std::size_t u = 0; u < m; ++u) {
         const std::size_t row = static_cast<std::size_t>(core_[u]);
         coreX_[u] = x[row];
-        coreStates_[u] = states[row];
+        coreStates_[u] = coreGuess[row];
     }
     // free_ holds the rows factor_ was last factorised with (a trial's, or the last round's): a
     // core that frees none of them (its rows were all at bounds in the trial, or a round grown

@@ -165,6 +165,7 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
         return finish(x, states, result);
     }
 
+    guessStates_.assign(states.begin(), states.end());
     free_.assign(n, 2);  // neither free nor clamped: the first trial factorises
     refinable_ = false;
     switched_.assign(n, 0);
@@ -200,9 +201,13 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
         }
     }
     // The core, grown by the rows its answer finds wrong outside it, until it holds or is too large.
+    // The trials only choose the first core: its pivoting starts from the guess's states, which
+    // the trials' switches (every wrong row at once, the friction rows' guessed from their
+    // normals') repair worse than single pivots do; a later round's from the last core's answer.
     for (int round = 0; round < kCoreRounds; ++round) {
         result.coreRounds = round + 1;
-        const int wrong = solveCore(rows, responses, problem, x, states, wTolerance, settings, result);
+        const std::span<const LcpRowState> coreGuess = round == 0 ? std::span<const LcpRowState>(guessStates_) : states;
+        const int wrong = solveCore(rows, responses, problem, x, states, coreGuess, wTolerance, settings, result);
         if (wrong == 0) return finish(x, states, result);
         if (wrong < 0) break;
         for (std::size_t i = 0; i < n; ++i)

@@ -78,8 +78,8 @@ private:
     SparseLcpResult& finish(std::span<const Real> x, std::span<const LcpRowState> states, SparseLcpResult& result);
     std::size_t markCore(const LcpProblem& problem, std::span<const LcpRowState> states);
     int solveCore(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses, const LcpProblem& problem,
-                  std::span<Real> x, std::span<LcpRowState> states, Real wTolerance, const LcpExactSettings& settings,
-                  SparseLcpResult& result);
+                  std::span<Real> x, std::span<LcpRowState> states, std::span<const LcpRowState> coreGuess,
+                  Real wTolerance, const LcpExactSettings& settings, SparseLcpResult& result);
     // The small questions asked of every row, inline: the solver's three files (sparse_lcp.cpp,
     // sparse_pattern.cpp, sparse_core.cpp) ask them in their inner loops.
     static bool clamped(LcpRowState s) { return s == LcpRowState::AtLower || s == LcpRowState::AtUpper; }
@@ -119,6 +119,7 @@ private:
     // written whole before it is read, so growing needs no zeroing (lcp::Workspace).
     lcp::Workspace paths_;
     std::vector<std::uint8_t> free_, use_, reached_, switched_, touched_;
+    std::vector<LcpRowState> guessStates_;  // the states the trials started from (solve())
     std::vector<int> pathStart_;  // solveCore: the first variable each path reaches
     std::vector<int> supports_, supportStart_;  // solvePattern: the groups each path reaches
     // The core (sparse_core.cpp): rows whose state the trials could not settle, solved as a dense
