@@ -1,6 +1,6 @@
-// The sparse path's way out when its trials do not settle (a tumbling figure whose contacts all
+// The sparse path's way out when its trial does not settle (a tumbling figure whose contacts all
 // change at once, friction rows that keep swapping sides): most rows are right by then. The rows
-// that were switched during the trials, the sliding friction rows, and the normals and friction
+// its check found wrong, the sliding friction rows, and the normals and friction
 // rows coupled to those form a small core U; the rows outside it keep their states (free rows as
 // equations F, the others at their bounds), and the core is solved as a dense boxed LCP with its
 // friction coupling, on its Schur complement
@@ -47,13 +47,13 @@ constexpr std::size_t kMaxCore = 96;
 
 }  // namespace
 
-// Marks in inCore_ the rows switched by the trials, those with fixed boxes and the sliding friction
-// rows (none without states), each with its normal and the normal's friction rows; returns how many.
+// Marks in inCore_ the rows switched by the trial (and the rounds), those with fixed boxes and the
+// sliding friction rows, each with its normal and the normal's friction rows; returns how many.
 std::size_t SparseLcpSolver::markCore(const LcpProblem& problem, std::span<const LcpRowState> states) {
     const std::size_t n = switched_.size();
     inCore_.assign(switched_.begin(), switched_.end());
     for (std::size_t i = 0; i < n; ++i)
-        if ((!states.empty() && sliding(problem, states, i)) || fixedBox(problem, i)) inCore_[i] = 1;
+        if (sliding(problem, states, i) || fixedBox(problem, i)) inCore_[i] = 1;
     for (std::size_t i = 0; i < n; ++i)  // a friction row's normal, then every friction row of a normal
         if (source(problem, i) >= 0 && inCore_[i]) inCore_[static_cast<std::size_t>(source(problem, i))] = 1;
     for (std::size_t i = 0; i < n; ++i)

@@ -8,33 +8,6 @@ namespace af {
 
 namespace {
 
-// Guesses tried before the dense core takes over. A resting figure needs one, a step with a few
-// new contacts or limits two. Past that the pattern is far from the guess (everything hits the
-// ground at once), and block pivoting with friction coupling, whose problem is neither symmetric
-// nor a P-matrix one, tends to switch rows back and forth rather than settle. On the bench
-// ragdoll's first 250 steps: 2 trials 796M instructions, 3 trials 830M, 8 trials 973M (cores up
-// to 96 rows).
-constexpr int kMaxTrials = 2;
-// A first trial that finds at most this many rows wrong goes to the core at once: switching a few
-// rows together mostly upsets their neighbours (a sticking contact that must slide moves the load
-// onto the corners next to it), which the core's pivoting settles at a cost that grows with its
-// size, not the figure's, while a second trial refactorises everything. Many wrong rows (an
-// impact) are better switched together first, keeping the core well below kMaxCore. Bench drop,
-// 600 steps, with a second trial always / up to 10 wrong rows at once to the core / up to 30 /
-// never: 427.5M / 401.3M / 402.6M / 407.6M instructions; grid4's first 200 steps: 9.43G /
-// 8.32G / 7.05G / 7.09G. Rows with fixed boxes (joint friction) join the core anyway and are not
-// counted: counted, they sent many of our humanoid's steps on the default map to a second trial,
-// whose switches grew the core past kMaxCore (at ca69c12, af-sim --solver tree --seed 4: 16
-// give-ups in 108 steps). af-sim --solver tree: 1.04G instructions counted, 0.97G not; seeds 0-3,
-// 5 and 6: 2.69G, 2.67G.
-constexpr int kCoreAfterOneTrial = 32;
-// A first trial whose switched rows alone (with those the core takes anyway, see markCore) make a
-// core this large gives up: the second trial only adds rows, and the core then outgrows kMaxCore
-// (96, sparse_core.cpp) in the end. The caller's fallback starts from the step's guess, not from
-// the trials, so its answer is the same. Bench single and grid4, 600 steps: every first trial
-// past 32 wrong rows whose core already held 83 rows or more gave up after the second; the four
-// that went on to a core that held had 54-81 rows after the first trial, 65-85 after the second.
-constexpr std::size_t kHopelessCore = 84;
 // Times the dense core may grow by the rows its answer finds wrong outside it.
 constexpr int kCoreRounds = 4;
 // A guess is kept when its free rows' w are within this fraction of the tolerance. What a kept
@@ -165,45 +138,42 @@ SparseLcpResult SparseLcpSolver::solve(std::span<const ConstraintRow> rows, std:
         return finish(x, states, result);
     }
 
+    // One trial, the guess's pattern. When it does not hold, the rows its check finds wrong choose
+    // the core (with the sliding friction rows and their normals, see markCore), and the core's
+    // pivoting starts from the guess's states; a later round's from the last core's answer. The
+    // trial's switches (every wrong row at once, a friction row's state guessed from its normal's)
+    // only tell markCore which rows slide then: single pivots repair the guess better than the
+    // switched pattern, and a second trial solving that pattern, which this path had until the
+    // seventeenth session, cost more than it spared. Bench single, 600 steps: 258.8M instructions
+    // with a second trial after more than 32 wrong rows and the core started from the switches,
+    // 250.2M with the core started from the guess, 249.2M without the second trial; grid4 4855M,
+    // 4770M, 4757M; af-sim seeds 0-40: 3405 steps and a failed solve, then 3366 and none.
     guessStates_.assign(states.begin(), states.end());
-    free_.assign(n, 2);  // neither free nor clamped: the first trial factorises
+    free_.assign(n, 2);  // neither free nor clamped: the trial factorises
     refinable_ = false;
+    result.trials = 1;
+    if (!solvePattern(rows, responses, problem, x, states, result)) return result;
+    if (check(rows, responses, problem, x, states, wTolerance, settings.tolerance) == 0) {
+        refinable_ = true;
+        slidingAnswersKept_ = false;
+        return finish(x, states, result);
+    }
     switched_.assign(n, 0);
-    for (int trial = 1; trial <= kMaxTrials; ++trial) {
-        result.trials = trial;
-        if (!solvePattern(rows, responses, problem, x, states, result)) return result;
-        const int wrong = check(rows, responses, problem, x, states, wTolerance, settings.tolerance);
-        if (wrong == 0) {
-            refinable_ = true;
-            slidingAnswersKept_ = false;
-            return finish(x, states, result);
-        }
-        int wrongOutsideCore = 0;  // rows with fixed boxes join the core whatever the trials find
-        for (std::size_t i = 0; i < n; ++i) {
-            if (next_[i] == states[i]) continue;
-            states[i] = next_[i];
-            switched_[i] = 1;
-            if (!fixedBox(problem, i)) ++wrongOutsideCore;
-        }
-        // A friction row whose normal stops pushing has nothing to push with; when the normal
-        // pushes again it starts sticking.
-        for (std::size_t i = 0; i < n; ++i) {
-            const int s = source(problem, i);
-            if (s < 0) continue;
-            const bool normalPushes = states[static_cast<std::size_t>(s)] == LcpRowState::Free;
-            if (!normalPushes && x[static_cast<std::size_t>(s)] == 0) states[i] = LcpRowState::AtLower;
-            if (normalPushes && states[i] == LcpRowState::AtLower && lo_[i] == hi_[i]) states[i] = LcpRowState::Free;
-        }
-        if (wrongOutsideCore <= kCoreAfterOneTrial) break;
-        if (trial < kMaxTrials && markCore(problem, {}) >= kHopelessCore) {
-            result.status = LcpStatus::NotConverged;
-            return result;
-        }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (next_[i] == states[i]) continue;
+        states[i] = next_[i];
+        switched_[i] = 1;
+    }
+    // A friction row whose normal stops pushing has nothing to push with; when the normal
+    // pushes again it starts sticking.
+    for (std::size_t i = 0; i < n; ++i) {
+        const int s = source(problem, i);
+        if (s < 0) continue;
+        const bool normalPushes = states[static_cast<std::size_t>(s)] == LcpRowState::Free;
+        if (!normalPushes && x[static_cast<std::size_t>(s)] == 0) states[i] = LcpRowState::AtLower;
+        if (normalPushes && states[i] == LcpRowState::AtLower && lo_[i] == hi_[i]) states[i] = LcpRowState::Free;
     }
     // The core, grown by the rows its answer finds wrong outside it, until it holds or is too large.
-    // The trials only choose the first core: its pivoting starts from the guess's states, which
-    // the trials' switches (every wrong row at once, the friction rows' guessed from their
-    // normals') repair worse than single pivots do; a later round's from the last core's answer.
     for (int round = 0; round < kCoreRounds; ++round) {
         result.coreRounds = round + 1;
         const std::span<const LcpRowState> coreGuess = round == 0 ? std::span<const LcpRowState>(guessStates_) : states;
@@ -261,7 +231,7 @@ bool SparseLcpSolver::guessHolds(std::span<const ConstraintRow> rows, std::span<
     // Whether every row holds does not depend on the order they are asked in. A resting figure's
     // guess fails step after step at the same row, far down the list: asked first, it saves the
     // bench ragdoll 1.2k of its 205k instructions per step. Its bounds alone are needed for that
-    // (refine() and the trials take theirs from check()): 1.3k more of 191k.
+    // (refine() and the trial take theirs from check()): 1.3k more of 191k.
     if (lastMiss_ < rows.size()) {
         bound(problem, x, lastMiss_);
         if (!holds(lastMiss_)) {

@@ -4,19 +4,18 @@
 // at a bound (the previous step's answer: a resting figure keeps its pattern), solving the free
 // rows' equations with the sparse factorisation of sparse_factor.h (time linear in the bodies for
 // a figure on the ground), and correcting the guess where it was wrong: free rows beyond a bound
-// go to it, clamped rows pulling the wrong way are freed (block principal pivoting). Each trial
-// is solved exactly, friction coupling included: a sliding friction row's impulse is μ times its
+// go to it, clamped rows pulling the wrong way are freed. The trial, the guess's pattern, is
+// solved exactly, friction coupling included: a sliding friction row's impulse is μ times its
 // normal's, solved together with the free rows (see solvePattern).
 //
 // No matrix of all rows is ever formed: A's products go through the bodies (M⁻¹Jᵀ per row).
 // The answer is accepted only when every row is complementary within the tolerance. Before any
 // trial the guess's own impulses are checked (a figure at rest meets its last problem again and
-// keeps them without factorising). When the first trial finds a few rows wrong, or a second
-// one does not settle either (a tumbling figure whose contacts all change at once), the rows
-// they switched are solved as a dense LCP on their Schur complement by the pivoting solver
-// (sparse_core.cpp), together with every row boxed by fixed bounds (joint friction, whose last
-// states are no guess), and the rows its answer finds wrong outside it join it; if that core
-// grows too large, the solve says so and the caller falls back to its other solvers.
+// keeps them without factorising). When the trial finds rows wrong, they are solved as a dense
+// LCP on their Schur complement by the pivoting solver (sparse_core.cpp), together with every row
+// boxed by fixed bounds (joint friction, whose last states are no guess), and the rows its answer
+// finds wrong outside it join it; if that core grows too large, the solve says so and the caller
+// falls back to its other solvers.
 
 #include "af/dynamics/lcp.h"
 #include "dynamics/lcp_internal.h"
@@ -30,11 +29,11 @@ namespace af {
 struct SparseLcpResult {
     LcpStatus status = LcpStatus::Solved;  // NotConverged: no answer, fall back; InvalidInput:
                                            // rows the factorisation cannot take (see analyse)
-    int trials = 0;                        // patterns solved (0: the guess's own impulses held,
-                                           // or were refined; 1: its states held)
+    int trials = 0;                        // 0: the guess's own impulses held, or were refined;
+                                           // 1: its pattern was solved (and held, or a core followed)
     bool refined = false;                  // the guess refined with the last answer's factorisation
     int couplingSolves = 0;                // trials with sliding friction rows (solved coupled)
-    int coreRows = 0;                      // rows of the dense core, when the trials did not settle
+    int coreRows = 0;                      // rows of the dense core, when the trial did not settle
     int coreRounds = 0;                    // times the core was solved (it grows by the rows found wrong)
     int factorisations = 0;
     Real residual = 0;                     // natural residual (lcp.h) of the answer
@@ -119,10 +118,10 @@ private:
     // written whole before it is read, so growing needs no zeroing (lcp::Workspace).
     lcp::Workspace paths_;
     std::vector<std::uint8_t> free_, use_, reached_, switched_, touched_;
-    std::vector<LcpRowState> guessStates_;  // the states the trials started from (solve())
+    std::vector<LcpRowState> guessStates_;  // the states the trial started from (solve())
     std::vector<int> pathStart_;  // solveCore: the first variable each path reaches
     std::vector<int> supports_, supportStart_;  // solvePattern: the groups each path reaches
-    // The core (sparse_core.cpp): rows whose state the trials could not settle, solved as a dense
+    // The core (sparse_core.cpp): rows whose state the trial could not settle, solved as a dense
     // LCP on their Schur complement with the pivoting solver.
     std::vector<int> core_, coreIndex_;
     std::vector<std::uint8_t> inCore_;

@@ -172,8 +172,8 @@ Real SparseLcpSolver::slidingSlope(const LcpProblem& problem, std::span<const Lc
 //     δ_F = A_FF⁻¹ (r_F − A_Fs δ_s),   δ_s = ±μ δ_n(s)
 // (the sliding rows' coupling by the kept LU of the small system of solvePattern, whose equations
 // are the same with δ0 = A_FF⁻¹ r_F for x0) leaves an error of the order of that change times
-// the residual. The refined x must pass the trials' check, and its free rows w = 0 within the
-// tolerance; if it does not, the trials follow. It follows guessHolds on the same x, whose w_ it
+// the residual. The refined x must pass the trial's check, and its free rows w = 0 within the
+// tolerance; if it does not, the trial follows. It follows guessHolds on the same x, whose w_ it
 // updates for the rows it puts back on their bounds (a resting figure's one or two sliding rows,
 // by rounding) instead of evaluating every row again.
 bool SparseLcpSolver::refine(std::span<const ConstraintRow> rows, std::span<const RowResponse> responses,
