@@ -2,17 +2,14 @@
 
 #include "world_state.h"
 
+#include "disjoint_sets.h"
+
 #include <algorithm>
 #include <numeric>
 
 namespace af {
 
 namespace {
-
-int findRoot(std::vector<int>& parent, int i) {
-    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    return i;
-}
 
 bool overSuspendThresholds(const BodyMotion& m, const RestSettings& s) {
     return !(m.linearVelocity.norm() <= s.suspendLinearVelocity && m.angularVelocity.norm() <= s.suspendAngularVelocity &&
@@ -92,7 +89,7 @@ void World::State::testRest(Real dt) {
     for (const BodyContact& c : found()) {
         if (c.bodyB == kStaticWorld) continue;
         const int fa = bodyFigure[static_cast<std::size_t>(c.bodyA)], fb = bodyFigure[static_cast<std::size_t>(c.bodyB)];
-        if (fa >= 0 && fb >= 0) group[static_cast<std::size_t>(findRoot(group, fa))] = findRoot(group, fb);
+        if (fa >= 0 && fb >= 0) joinSets(group, fa, fb);
     }
     std::vector<std::uint8_t> groupReady(figures.size(), 1);
     for (std::size_t f = 0; f < figures.size(); ++f)

@@ -2,6 +2,8 @@
 
 #include "world_state.h"
 
+#include "disjoint_sets.h"
+
 #include <algorithm>
 #include <numeric>
 #include <tuple>
@@ -17,17 +19,8 @@ constexpr Real kPenetrationTolerance = 0.02;
 // its answer stands while the bodies move less than that (see World::State::findContacts).
 constexpr Real kSearchSlack = 1e-4;
 
-int findRoot(std::vector<int>& parent, int i) {
-    while (parent[static_cast<std::size_t>(i)] != i) {
-        parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-        i = parent[static_cast<std::size_t>(i)];
-    }
-    return i;
-}
-
 void join(std::vector<int>& parent, int a, int b) {
-    if (a == kWorldBody || b == kWorldBody) return;
-    parent[static_cast<std::size_t>(findRoot(parent, a))] = findRoot(parent, b);
+    if (a != kWorldBody && b != kWorldBody) joinSets(parent, a, b);
 }
 
 }  // namespace
