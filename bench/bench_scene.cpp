@@ -1,4 +1,4 @@
-// Cost of one step of the benchmark ragdoll of bench-scene.md, scene (a) `single` (16 boxes,
+// Cost of one step of the benchmark ragdoll of docs/bench-scene.md, scene (a) `single` (16 boxes,
 // 15 joints, dropped on the ground), collision included, for each solver: µs per 1/60 s step
 // over the first 600 steps, restarted from the drop. Rest is off, so a figure that has come to
 // rest is still solved every step.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue #4's side-by-side comparison: ODE and Bullet (Debian's packages) and our af-bench-scene on
-# one ragdoll scene of bench-scene.md, every engine/variant once, as a table plus the ratios of our
+# one ragdoll scene of docs/bench-scene.md, every engine/variant once, as a table plus the ratios of our
 # solvers' mean µs/step to Bullet si10's.
 #
 # With --instructions, every engine/variant runs once more under callgrind, counting the

@@ -1,4 +1,4 @@
-// bullet-bench-scene: the ragdoll scenes of bench-scene.md driven by Bullet as §5 prescribes.
+// bullet-bench-scene: the ragdoll scenes of docs/bench-scene.md driven by Bullet as §5 prescribes.
 // Variants: si10 (sequential impulse, 10 iterations), mlcp_dantzig (btMLCPSolver + btDantzigSolver,
 // falling back to sequential impulse where Dantzig fails). Built against Debian's single- or
 // double-precision libraries (btScalar = float or double).

@@ -1,4 +1,4 @@
-// ode-bench-scene: the ragdoll scenes of bench-scene.md driven by ODE as §5 prescribes.
+// ode-bench-scene: the ragdoll scenes of docs/bench-scene.md driven by ODE as §5 prescribes.
 // Variants: dantzig (dWorldStep), quickstep20 (dWorldQuickStep, 20 iterations).
 
 #include "peer_common.h"

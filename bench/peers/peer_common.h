@@ -1,5 +1,5 @@
 #pragma once
-// What the ODE and Bullet peer programs of bench-scene.md §5 share: the command line, the joint
+// What the ODE and Bullet peer programs of docs/bench-scene.md §5 share: the command line, the joint
 // frames of §2 expressed as engine-neutral rotations, the start-up sign probe's report and the
 // run loop that feeds benchscene::RunMetrics. Frames: model/body-local axes as in §2, SI units.
 

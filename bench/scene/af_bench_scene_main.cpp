@@ -1,4 +1,4 @@
-// af-bench-scene: our engine on the ragdoll benchmark of bench-scene.md, printing one JSON
+// af-bench-scene: our engine on the ragdoll benchmark of docs/bench-scene.md, printing one JSON
 // object of RunMetrics (engine "af", variant = solver). Only world.step() is timed.
 
 #include "af_scene.h"

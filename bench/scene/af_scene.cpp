@@ -47,8 +47,8 @@ af::FigureConstraint makeConstraint(const JointDef& j, const Placement& pl) {
             c.limitAngles = {0, (j.hi1 - j.lo1) * kDegPerRad, (j.lo1 + j.hi1) / 2 * kDegPerRad};
             break;
         case JointKind::Universal:
-            // §2's universal joint is a Cardan cross with a range per axis: our Cardan extension
-            // (Doom's homokinetic joint lets the arms leave ⟂). Body1, the child, carries axis 2.
+            // docs/bench-scene.md §2's universal joint is a Cardan cross with a range per axis: our Cardan
+            // extension (Doom's homokinetic joint lets the arms leave ⟂). Body1, the child, carries axis 2.
             c.type = af::ConstraintType::Universal;
             c.cardan = true;
             c.shafts[0] = R * j.axis2;

@@ -1,5 +1,5 @@
 #pragma once
-// Our engine on the benchmark scene (bench-scene.md): the ragdolls as af::Figures in SI units,
+// Our engine on the benchmark scene (docs/bench-scene.md): the ragdolls as af::Figures in SI units,
 // dropped on the plane z = 0, and the read-out of their bodies' states for RunMetrics.
 //
 // Joint mapping (§2 → af, figure.h / joints.h; body1 = the §2 child, body2 = the §2 parent, so

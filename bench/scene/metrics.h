@@ -1,5 +1,5 @@
 #pragma once
-// The per-run measurements of bench-scene.md §6, computed from body states only (never from an
+// The per-run measurements of docs/bench-scene.md §6, computed from body states only (never from an
 // engine's own joint errors), so that every engine is judged by the same formulas.
 // Feed addStep once per step, after the step, with the states of all bodies, ragdoll-major
 // (ragdoll r's body i at r*16+i), and the wall time of the step call alone.

@@ -1,5 +1,5 @@
 #pragma once
-// The engine-neutral ragdoll benchmark scene (/work/shared/design/bench-scene.md §2–§4):
+// The engine-neutral ragdoll benchmark scene (docs/bench-scene.md §2–§4):
 // the ragdoll's boxes and joints in the model frame (the standing T-pose), the placements of
 // the four scenes, and the joint angle formulas every engine's run is measured with.
 // SI units (m, kg, s, rad); Z up; +X = the character's right, +Y = its forward.

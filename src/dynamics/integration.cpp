@@ -12,7 +12,7 @@
 namespace af {
 namespace {
 
-// Doom applies its per-step rules at this rate (spec §4.7, §4.10).
+// Doom applies its per-step rules at this rate (docs/doom-physics.md §4.7, §4.10).
 constexpr Real kDoomStepsPerSecond = 60;
 
 // Newton on the gyroscopic equation converges quadratically from ω; two or three iterations

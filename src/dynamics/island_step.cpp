@@ -30,8 +30,8 @@ void Island::step(Real dt, IslandContext& context) {
     farPointsApart_ = true;
     context.report.rows += static_cast<int>(rows_.size());
     if (!solved) ++context.report.failures;
-    // Doom caps the speeds after the constraint forces too (§4.9): a whipping chain end must not
-    // outrun what one step can follow.
+    // Doom caps the speeds after the constraint forces too (docs/doom-physics.md §4.9): a whipping chain end
+    // must not outrun what one step can follow.
     for (RigidBody& b : bodies_) clampVelocity(b, context.settings.integration);
 
     // The joint's impulse of this step bounds its friction in the next step, as in Doom.

@@ -4,9 +4,9 @@
 //     C = pA − pB (3 rows),  J_i = [ e_i │ rA × e_i │ −e_i │ e_i × rB ]
 //
 // Joint friction: three rows on the relative angular velocity, J_k = [0 │ e_k │ 0 │ −e_k],
-// boxed by ±f·|λ_prev|. Doom writes +e_k on body2 (spec §4.7, §6 item 6), which damps ωA + ωB:
-// it brakes two bodies spinning together and pushes on two bodies turning against each other.
-// We damp ωA − ωB, the motion of the joint itself, as for the universal joint and the hinge.
+// boxed by ±f·|λ_prev|. Doom writes +e_k on body2 (docs/doom-physics.md §4.7, docs/doom-quirks.md item 6),
+// which damps ωA + ωB: it brakes two bodies spinning together and pushes on two bodies turning against each
+// other. We damp ωA − ωB, the motion of the joint itself, as for the universal joint and the hinge.
 
 #include "joint_parts.h"
 

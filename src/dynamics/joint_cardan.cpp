@@ -1,7 +1,7 @@
 // Cardan (Hooke) universal joint, our extension (Doom's universalJoint is the homokinetic one of
 // joint_universal.cpp): the point part, one row keeping the cross's arms ⟂, a one-sided row on
 // each of its two angles near the ends of their ranges, and joint friction about the arms. The
-// benchmark ragdoll's hips are such joints (bench-scene.md §2), as ODE's and Bullet's are.
+// benchmark ragdoll's hips are such joints (docs/bench-scene.md §2), as ODE's and Bullet's are.
 //
 // Arms. a (on A) and b (on B), ⟂ at spawn, stay ⟂:
 //     C = a·b,   Cdot = (ωA × a)·b + a·(ωB × b) = (ωA − ωB)·(a × b)
@@ -15,7 +15,7 @@
 //     θ1 = atan2(y1, x1),  y1 = b·cA,  x1 = b·bA,   ẏ1 = (ωA − ωB)·(cA × b),  ẋ1 = (ωA − ωB)·(bA × b)
 //     dθ/dt = (x ẏ − y ẋ)/(x² + y²) = (ωA − ωB)·g,
 //     g0 = a × (x0 cB − y0 aB)/(x0² + y0²),   g1 = (x1 cA − y1 bA) × b/(x1² + y1²)
-// These are bench-scene.md's θ1 and θ2 of a universal joint (its a1 = b on the parent B, a2 = a
+// These are docs/bench-scene.md's θ1 and θ2 of a universal joint (its a1 = b on the parent B, a2 = a
 // on the child A). Each range [lower, upper] is a V limit as the hinge's (joint_hinge.cpp): with
 // d = wrap(θ − centre), C = halfWidth − |d| ≥ 0, written once C < settings.limitMargin.
 //

@@ -12,10 +12,10 @@
 //     Cdot_k = (ωB × e_k)·d + e_k·(vA + ωA × rA − vB − ωB × rB)
 //            = e_k·vA + ωA·(rA × e_k) − e_k·vB + ωB·(e_k × (pA − xB))
 //     J_k = [ e_k │ rA × e_k │ −e_k │ e_k × (pA − xB) ]
-// Doom stores the spawn offset in body1's frame but reads it in body2's (§6 item 7), so with
+// Doom stores the spawn offset in body1's frame but reads it in body2's (docs/doom-quirks.md item 7), so with
 // differently oriented bodies it pulls towards the wrong line; here the offset is stored and
 // read in B's frame. Doom's body2 rows also lack the lever arm e_k × (pA − xB), so they are
-// exact only while B does not rotate; these are exact. The slider has no friction (§3.8).
+// exact only while B does not rotate; these are exact. The slider has no friction (docs/figures.md §3.8).
 
 #include "joint_parts.h"
 

@@ -13,7 +13,7 @@
 //     dφ/dt = (y ẋ − x ẏ)/(x² + y²) = (ωA − ωB)·g,  g = rA × (y tB − x rB)/(x² + y²)
 // (g = hB when the axes are aligned.)
 //
-// V limit (§3.8): allowed |d| ≤ halfWidth with d = wrap(φ − center).
+// V limit (docs/figures.md §3.8): allowed |d| ≤ halfWidth with d = wrap(φ − center).
 //     C = halfWidth − |d|,  Cdot = −sign(d)·(ωA − ωB)·g,  J = [0 │ −sign(d) g │ 0 │ sign(d) g]
 // written once C < settings.limitMargin, lo = 0. Doom builds the same limit as a cone around a
 // limit direction cutting a V out of the plane the body1 shaft sweeps; joints.h gives the

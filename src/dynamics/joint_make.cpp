@@ -1,4 +1,4 @@
-// Joints from a figure (spec §3.8): every world-space spawn vector goes into the frame of the
+// Joints from a figure (docs/figures.md §3.8): every world-space spawn vector goes into the frame of the
 // body that carries it, using the bodies' spawn poses, so it follows that body from then on.
 // Limits are converted once: angles to radians, Doom's full angles to half angles, the pyramid's
 // roll into a basis, the hinge's three V angles into an interval of the hinge angle.
@@ -30,7 +30,7 @@ SpawnFrame spawnFrame(const Figure& figure, int body) {
     return f;
 }
 
-// The pyramid basis (§3.8) in world space: Doom takes the angles of the limit axis as it was
+// The pyramid basis (docs/figures.md §3.8) in world space: Doom takes the angles of the limit axis as it was
 // written (model space, before the spawn placement), sets the roll to a3 and uses the rows of the
 // resulting matrix, which are our columns: axis = forward, base = left rolled by a3.
 Mat3 pyramidBasis(const Figure& figure, const Vec3& worldAxis, Real rollDegrees) {

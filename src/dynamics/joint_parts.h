@@ -103,7 +103,7 @@ void addAngularRow(const Pair& pair, GradientOf&& gradientOf, Real error, Real l
             [&](ConstraintRows& rows) { addAngularRow(pair, gradientOf(), error, lo, hi, relativeCfm, rows); });
 }
 
-// A unit vector ⟂ unit v (the hinge `left` of §3.8, made orthogonal).
+// A unit vector ⟂ unit v (the hinge `left` of docs/figures.md §3.8, made orthogonal).
 Vec3 perpendicular(const Vec3& v);
 // Angle wrapped into (−π, π].
 Real wrapAngle(Real angle);

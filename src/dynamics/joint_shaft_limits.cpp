@@ -1,4 +1,5 @@
-// Cone and pyramid limits on a shaft (ball and socket; universal on shaft 1), spec §3.8, §4.3.
+// Cone and pyramid limits on a shaft (ball and socket; universal on shaft 1), docs/figures.md §3.8,
+// docs/doom-physics.md §4.3.
 //
 // b = RA·limitShaft is the limited shaft (carried by A); the limit's axes are carried by B.
 // Every vector here is carried by one body, so its rate is ω × vector of that body, and for a

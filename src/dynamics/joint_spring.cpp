@@ -1,5 +1,5 @@
-// Spring: an explicit force (Doom's law, spec §4.3) and one-sided rows keeping the length within
-// [minLength, maxLength]. No equality rows.
+// Spring: an explicit force (Doom's law, docs/doom-physics.md §4.3) and one-sided rows keeping the length
+// within [minLength, maxLength]. No equality rows.
 //
 // Length. pA = xA + rA and pB = xB + rB are the two anchors, Δ = pB − pA, L = |Δ|, û = Δ/L.
 //     L̇ = û·(vB + ωB × rB − vA − ωA × rA)
@@ -8,7 +8,7 @@
 // Maximum (maxLength > 0):  C = maxLength − L ≥ 0,  J = the negation.
 // Written once C < settings.springLimitMargin, lo = 0 (Doom: only when past the limit).
 //
-// Force (Doom's, kept as it is, §6 item 8): with the anchor speeds vA, vB (0 for the world),
+// Force (Doom's, kept as it is, docs/doom-quirks.md item 8): with the anchor speeds vA, vB (0 for the world),
 //     damp = damping·|(vB − vA)·Δ| / |Δ|²           (damping × |relative speed along û| / L)
 //     L > restLength, stretch > 0:   F = û·(stretch·(L − restLength)² − damp)
 //     L ≤ restLength, compress > 0:  F = −û·(compress·(restLength − L)² − damp)

@@ -1,10 +1,11 @@
 // Universal joint: the point part, one row against relative twist, a cone or pyramid limit on
 // shaft 1, and joint friction about two axes ⟂ shaft 1.
 //
-// Twist row: homokinetic (constant velocity), the constraint Doom's row 3 aims at (§4.3), with an
-// exact Jacobian. Let a = shaft1 (carried by A) and b = −shaft2 (carried by B); a straight joint
-// has a = b. Let p (on A, ⟂ a) and q (on B, ⟂ b) be the two copies of the cardan axis, equal at
-// spawn. R = [a p a×p]·[b q b×q]ᵀ is the rotation taking B's pair (b, q) to A's pair (a, p).
+// Twist row: homokinetic (constant velocity), the constraint Doom's row 3 aims at
+// (docs/doom-physics.md §4.3), with an exact Jacobian. Let a = shaft1 (carried by A) and b = −shaft2
+// (carried by B); a straight joint has a = b. Let p (on A, ⟂ a) and q (on B, ⟂ b) be the two copies
+// of the cardan axis, equal at spawn. R = [a p a×p]·[b q b×q]ᵀ is the rotation taking B's pair
+// (b, q) to A's pair (a, p).
 // Split R = S·T into a swing S (the shortest rotation taking b to a) after a twist T about b.
 // "No relative twist" is T = I. In quaternions, r = (w, v) = s ⊗ t with s's axis ⟂ b and
 // t = (cos τ/2, sin τ/2 b), so v·b = cos(σ/2)·sin(τ/2) (σ the swing angle), which vanishes

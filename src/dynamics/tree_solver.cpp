@@ -222,8 +222,8 @@ void TreeSolver::Impl::remember(const ConstraintRows& rows, WarmStart& start) co
     std::sort(start.entries.begin(), start.entries.end());
 }
 
-// Bounds and friction coupling of the auxiliary LCP; false for a box on a primary row (spec
-// §4.5: a fatal error in Doom).
+// Bounds and friction coupling of the auxiliary LCP; false for a box on a primary row
+// (docs/doom-physics.md §4.5: a fatal error in Doom).
 bool TreeSolver::Impl::setBounds(const ConstraintRows& rows, bool position) {
     const std::size_t n = auxRows.size();
     lo.resize(n);

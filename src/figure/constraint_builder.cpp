@@ -1,4 +1,4 @@
-// Constraints in world space at spawn (doom3-af-spec.md §3.8); the limits stay as written.
+// Constraints in world space at spawn (docs/figures.md §3.8); the limits stay as written.
 
 #include "af/text/strings.h"
 #include "figure_build_context.h"

@@ -13,7 +13,7 @@ struct FigureBuildContext {
     const RigidPose& placement;
     Diagnostics diagnostics;
 
-    // A decl vector in model space (§3.2): joint positions only, the negation applied last.
+    // A decl vector in model space (docs/figures.md §3.2): joint positions only, the negation applied last.
     // A joint the skeleton lacks is warned about and counts as the origin, as in Doom 3.
     Vec3 resolve(const AFVector& v);
     // A resolved direction in world space, normalised; a zero direction is an error.

@@ -1,4 +1,4 @@
-// From decl to figure: the load sequence of doom3-af-spec.md §3.1–§3.5.
+// From decl to figure: the load sequence of docs/figures.md §3.1–§3.5.
 
 #include "af/geometry/mass_properties.h"
 #include "af/text/strings.h"
@@ -23,7 +23,7 @@ ShapeKind shapeKindOf(ShapeType type) {
     return ShapeKind::box;
 }
 
-// The joint a body drives (§3.6): its own, except the root body, which drives the first child
+// The joint a body drives (docs/figures.md §3.6): its own, except the root body, which drives the first child
 // of the `origin` joint (or of the skeleton's root when there is no `origin` joint).
 int drivenJoint(const Skeleton& skeleton, const AFBody& body) {
     if (body.joint != "origin") return skeleton.find(body.joint);

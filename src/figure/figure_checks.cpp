@@ -1,5 +1,5 @@
-// Warnings about figures that tend to misbehave (doom3-af-spec.md §6, items 1–2; iddevnet's
-// advice): very different masses across a joint, lopsided inertia, jointed bodies that start
+// Warnings about figures that tend to misbehave (docs/doom-quirks.md items 1–2, from
+// iddevnet's advice): very different masses across a joint, lopsided inertia, jointed bodies that start
 // inside each other, and bodies that are not all joined into one tree.
 
 #include "af/geometry/mass_properties.h"

@@ -1,4 +1,4 @@
-// containedJoints lists and the joint → body table (doom3-af-spec.md §1.6, §3.7).
+// containedJoints lists and the joint → body table (docs/formats.md §1.6, docs/figures.md §3.7).
 
 #include "af/text/strings.h"
 #include "figure_build_context.h"

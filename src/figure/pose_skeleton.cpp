@@ -1,5 +1,5 @@
-// Bodies drive the skeleton (doom3-af-spec.md §3.6), in one frame: world space throughout.
-// Doom mixes model and world space for `position` and `both` bodies (§6, item 19); we do not.
+// Bodies drive the skeleton (docs/figures.md §3.6), in one frame: world space throughout.
+// Doom mixes model and world space for `position` and `both` bodies (docs/doom-quirks.md item 19); we do not.
 
 #include "af/figure/figure.h"
 

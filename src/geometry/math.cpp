@@ -13,7 +13,7 @@ Mat3 rotationFromAngles(Real pitchDeg, Real yawDeg, Real rollDeg) {
     const Real sy = std::sin(yawDeg * kDegToRad), cy = std::cos(yawDeg * kDegToRad);
     const Real sr = std::sin(rollDeg * kDegToRad), cr = std::cos(rollDeg * kDegToRad);
 
-    // Doom's rows (forward, left, up) of idAngles::ToMat3, §0.2, become our columns.
+    // Doom's rows (forward, left, up) of idAngles::ToMat3 (docs/conventions.md §0.2) become our columns.
     Mat3 r;
     r.col(0) << cp * cy, cp * sy, -sp;
     r.col(1) << sr * sp * cy - cr * sy, sr * sp * sy + cr * cy, sr * cp;

@@ -1,5 +1,5 @@
 // Our engine on the benchmark scene (a) `single` with the exact solver, judged by the scene's
-// own metrics (bench-scene.md §6). Measured when the hips became Cardan joints (Release, exact
+// own metrics (docs/bench-scene.md §6). Measured when the hips became Cardan joints (Release, exact
 // solver, 600 steps): joint error 1.3e-10 m, locked rotations 6.8e-11 rad, limits (§2's angles)
 // exceeded by 9.9e-11 rad at most, ground penetration 1.27 mm (= the contact slop, 0.05 inch),
 // energy gain 2e-12 J, rest from step 103. Twist is limited by our ball joint's twist limit and

@@ -1,4 +1,4 @@
-// The run metrics of bench-scene.md §6 on hand-made states: a ragdoll resting in the T-pose,
+// The run metrics of docs/bench-scene.md §6 on hand-made states: a ragdoll resting in the T-pose,
 // pushed into the ground, torn at a joint, bent beyond a limit, falling, exploding.
 
 #include "metrics.h"

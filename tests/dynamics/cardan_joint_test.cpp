@@ -1,7 +1,7 @@
 // The Cardan (Hooke) universal joint, our extension (FigureConstraint::cardan, joint_cardan.cpp):
 // its angles are the turns about both arms, its limit rows come at the ends of each range, and
 // swung hard it keeps its arms ⟂ and stops at each range's ends. Angles are measured here from
-// the bodies' poses alone, with the formulas of bench-scene.md §2, and compared with the engine's.
+// the bodies' poses alone, with the formulas of docs/bench-scene.md §2, and compared with the engine's.
 
 #include "joint_test_util.h"
 #include "world_test_util.h"

@@ -347,7 +347,8 @@ TEST(ConstraintPhysicsLimit, UniversalConeLimitStopsAHardSwingAtItsCone) {
 // Our twist: D = (qB⁻¹ qA)(qB0⁻¹ qA0)⁻¹ is A's rotation relative to B since spawn, in B's frame;
 // s = A's shaft at spawn in B's frame. Split D = S·T with S the shortest rotation taking s to D·s
 // (Eigen's FromTwoVectors); the twist is T's angle about s. That is the homokinetic
-// (constant-velocity) "no relative twist" of spec §4.3, computed without the engine's formula.
+// (constant-velocity) "no relative twist" of docs/doom-physics.md §4.3, computed without the engine's
+// formula.
 Real homokineticTwist(const Quat& qA, const Quat& qB, const Quat& qA0, const Quat& qB0, const Vec3& shaftInB) {
     const Quat d = (qB.conjugate() * qA) * (qB0.conjugate() * qA0).conjugate();
     const Quat swing = Quat::FromTwoVectors(shaftInB, d * shaftInB);
@@ -472,8 +473,8 @@ TEST(ConstraintPhysicsSlider, PushedAndTwistedItSlidesWithoutOffAxisDriftOrRotat
 // A slider between two moving bodies: a block slides along a rail that spins about its own axis
 // (6 rad/s) and tumbles slowly, in zero gravity. Centrifugal force drives the block along the
 // rail; relative to the rail it must move only along the axis and not turn. (Doom's slider rows
-// lack the rail's lever arm and hold only while the rail does not rotate, spec §6; ours must hold
-// here too.)
+// lack the rail's lever arm and hold only while the rail does not rotate, docs/doom-quirks.md item 7; ours
+// must hold here too.)
 TEST(ConstraintPhysicsSlider, OnASpinningRailItSlidesWithoutOffAxisDriftOrRotation) {
     const Figure figure = figureOfBlocks({"origin", "block"},
                                          boxBodyText("rail", "origin", Vec3(20, 1, 1), Vec3::Zero()) +
@@ -563,7 +564,7 @@ TEST(ConstraintPhysicsFixed, TumblingPairKeepsItsRelativePose) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Spring (Doom's law, §4.3): force = stretch·(L − restLength)², quadratic, along the spring. A
+// Spring (Doom's law, docs/doom-physics.md §4.3): force = stretch·(L − restLength)², quadratic, along the spring. A
 // cube bob hangs from a world anchor by a spring attached at its centre of mass, and air friction
 // lets it settle. Doom's damping term only shrinks the force's magnitude, so damping is 0 here.
 
@@ -675,7 +676,7 @@ TEST(ConstraintPhysicsSpring, MaxLengthLimitHoldsTheBobBelowItsFreeEquilibrium) 
 }
 
 // ---------------------------------------------------------------------------------------------
-// Joint friction (§4.7) on a hinge pendulum: a cube bob (mass 64) 30 units below a world hinge
+// Joint friction (docs/doom-physics.md §4.7) on a hinge pendulum: a cube bob (mass 64) 30 units below a world hinge
 // about +X. The friction row is an angular impulse bounded by f·|λ|, λ the hinge's impulse of the
 // previous step (about the weight times dt), so it acts as Coulomb friction with a torque of
 // about f·m·g: each half swing loses 2f/l radians of amplitude, and the bob sticks once

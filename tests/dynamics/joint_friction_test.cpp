@@ -1,5 +1,5 @@
-// Joint friction (§4.7): boxed rows on the relative angular velocity, bounded by the friction
-// coefficient times the joint's impulse of the previous step, absent when that is 0. Ball 3
+// Joint friction (docs/doom-physics.md §4.7): boxed rows on the relative angular velocity, bounded by the
+// friction coefficient times the joint's impulse of the previous step, absent when that is 0. Ball 3
 // rows, universal 2 (⟂ shaft 1), hinge 1 (the axis); fixed, slider and spring none.
 
 #include "joint_test_util.h"

@@ -1,6 +1,6 @@
 // Limits: a limit row appears exactly when the joint is past its limit or within the margin of
 // it, its error is the signed distance to the limit (negative outside), moving along it leads
-// back inside, and the angles mean what §3.8 says (full cone angle, pyramid faces and roll,
+// back inside, and the angles mean what docs/figures.md §3.8 says (full cone angle, pyramid faces and roll,
 // the hinge's V). Angles are exact to 1e-9 rad; tests stay ≥ 0.1° away from the margin's edge.
 
 #include "dynamics/joint_parts.h"

@@ -1,5 +1,5 @@
-// Doom's spring force (§4.3): quadratic in the stretch or compression, damped by a term that only
-// subtracts from the magnitude whichever way the anchors move, equal and opposite on the two
+// Doom's spring force (docs/doom-physics.md §4.3): quadratic in the stretch or compression, damped by a term
+// that only subtracts from the magnitude whichever way the anchors move, equal and opposite on the two
 // bodies along the line of the anchors. Forces exact to 1e-9 relative.
 
 #include "joint_test_util.h"

@@ -228,7 +228,7 @@ inline DenseLcp randomContactProblem(Rng& rng, int contacts, int jointRows) {
     return p;
 }
 
-/// The ragdoll-sized problem of the benchmark: the 16 bodies of bench-scene.md (SI units) in
+/// The ragdoll-sized problem of the benchmark: the 16 bodies of docs/bench-scene.md (SI units) in
 /// their T-pose, 15 joints (2 fixed = 6 rows, 9 ball-and-socket = 3 rows, 4 hinges = 5 rows:
 /// 59 equality rows), 10 one-sided limit rows, and 8 ground contacts with 2 friction rows each
 /// (24 rows): 93 rows. Body velocities are random around a fall onto the ground, some contacts

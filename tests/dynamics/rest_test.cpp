@@ -1,6 +1,7 @@
 // The rest (suspend) test against hand-made motion histories: each suspend threshold just
 // above and below, the movement window on translation and on rotation, minMoveTime, maxMoveTime,
-// wake(), and the users.md cases (the top of an arc, contact jitter, a limb swinging back).
+// wake(), and the cases users of ragdoll engines report (the top of an arc, contact jitter, a
+// limb swinging back).
 //
 // The step is 1/64 s, so time sums are exact and the window's closing step is known: the window
 // records on its first step and closes on the first step after more than noMoveTime (1 s) has
@@ -171,8 +172,8 @@ TEST(RestMonitor, WindowKeepsAwakeAFigureThatTurnedNoMoveRotation) {
     EXPECT_EQ(stepsUntilRest(declDefaults(), [](int n) { return turning(n, 10.01); }), 0);
 }
 
-// users.md §2.3: contacts make the speed flicker over its threshold on even steps and the
-// acceleration on odd ones, so the per-step test never passes, while the body only trembles in
+// Reported elsewhere as never sleeping: contacts make the speed flicker over its threshold on even steps and
+// the acceleration on odd ones, so the per-step test never passes, while the body only trembles in
 // place (1.4 units and 1.8 degrees from one extreme to the other).
 std::vector<BodyMotion> contactJitter(int n) {
     const Real sign = n % 2 == 0 ? 1 : -1;
@@ -192,8 +193,8 @@ TEST(RestMonitor, ContactJitterDoesNotKeepAFigureAwake) {
     EXPECT_EQ(stepsUntilRest(declDefaults(), contactJitter), kWindowCloseStep);
 }
 
-// users.md §2.3: sleeping in mid-air at the top of an arc. A body thrown up so that it is back
-// at the height of the window's recording step when the window closes: near the apex its speed
+// Reported elsewhere as sleeping wrongly: in mid-air at the top of an arc. A body thrown up so that it is
+// back at the height of the window's recording step when the window closes: near the apex its speed
 // is under the threshold, but its acceleration is g; and Doom's endpoint-only window would see no
 // move at all.
 TEST(RestMonitor, TopOfBallisticArcStaysAwake) {

@@ -130,7 +130,7 @@ TEST(Figure, ConstraintAnchorsResolveToJoints) {
     }
 }
 
-// Spec §3.6 round trip: bodies in their spawn poses give back the af_pose skeleton.
+// docs/figures.md §3.6 round trip: bodies in their spawn poses give back the af_pose skeleton.
 TEST(Figure, SkeletonRoundTripReproducesTheAfPose) {
     for (const RigidPose& placement : {RigidPose{}, somePlacement()}) {
         const Figure f = buildHumanoid(placement);
@@ -178,7 +178,7 @@ TEST(Figure, TurningAForearmBendsTheElbowChain) {
     expectNear(posed.joints[hand].position, bend.apply(f.afPose.joints[hand].position), 1e-9, "hand joint");
 }
 
-// Spec §1.6: "*origin -*chest" means every joint except the chest subtree.
+// docs/formats.md §1.6: "*origin -*chest" means every joint except the chest subtree.
 TEST(Figure, ContainedJointsExpandLikeDoom) {
     const Skeleton s = test::humanoidPose();
     const std::vector<int> all = expandJointList(s, "*origin");

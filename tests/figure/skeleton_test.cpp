@@ -10,7 +10,7 @@ namespace {
 
 using test::expectNear;
 
-// Spec §0.2: idAngles(0, θ, 0).ToQuat() has z = −sin(θ/2); as an md5 orientation it must turn
+// docs/conventions.md §0.2: idAngles(0, θ, 0).ToQuat() has z = −sin(θ/2); as an md5 orientation it must turn
 // the joint counter-clockwise about +Z by θ, the same rotation as the angles.
 TEST(Skeleton, Md5QuaternionsAreConjugatedOnce) {
     for (Real yaw : {30.0, 90.0, -135.0}) {
@@ -57,7 +57,7 @@ frame 0 {
     expectNear(s.local(2).position, Vec3(5, 0, 0), 1e-6, "local offset of b");
 }
 
-// The humanoid's af_pose frame 0 must reproduce the md5mesh bind pose (spec §2.3).
+// The humanoid's af_pose frame 0 must reproduce the md5mesh bind pose (docs/formats.md §2.3).
 TEST(Skeleton, HumanoidAfPoseMatchesBindPose) {
     const Md5MeshParseResult mesh = loadMd5MeshFile(test::sourcePath("models/humanoid/humanoid.md5mesh"));
     ASSERT_TRUE(mesh.ok()) << mesh.diagnostics.formatAll();

@@ -1,4 +1,4 @@
-// rotationFromAngles against Doom's stated behaviour (doom3-af-spec.md §0.2), checked through
+// rotationFromAngles against Doom's stated behaviour (docs/conventions.md §0.2), checked through
 // independent routes: the sense of each angle, a product of axis rotations, and Doom's own
 // matrix → angles formulas applied to the transpose.
 
@@ -56,8 +56,8 @@ TEST(Angles, IsAProperRotation) {
 }
 
 TEST(Angles, DoomAxisIsTheTransposeAndInvertsWithDoomsFormulas) {
-    // §0.2: with axis A (rows = local axes), pitch = −asin(A[0][2]), yaw = atan2(A[0][1], A[0][0]),
-    // roll = atan2(A[1][2], A[2][2]). A = Rᵀ, so A[i][j] = R(j, i).
+    // docs/conventions.md §0.2: with axis A (rows = local axes), pitch = −asin(A[0][2]),
+    // yaw = atan2(A[0][1], A[0][0]), roll = atan2(A[1][2], A[2][2]). A = Rᵀ, so A[i][j] = R(j, i).
     const Real pitch = 25, yaw = -130, roll = 65;
     const Mat3 a = rotationFromAngles(pitch, yaw, roll).transpose();
     EXPECT_NEAR(-std::asin(a(0, 2)) / kDeg, pitch, 1e-12);

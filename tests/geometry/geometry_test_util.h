@@ -35,7 +35,7 @@ template <typename A, typename B>
                                          << a << "\nexpected:\n" << b;
 }
 
-// Vertex lists compared as sets (orders that the spec leaves open must not matter).
+// Vertex lists compared as sets (orders that Doom's shapes do not pin down must not matter).
 inline ::testing::AssertionResult sameVertexSet(std::vector<Vec3> actual, std::vector<Vec3> expected,
                                                 Real tol) {
     if (actual.size() != expected.size()) {

@@ -117,7 +117,7 @@ TEST(MassClosedForm, CylinderMatchesEllipticNGonPrism) {
 }
 
 TEST(MassClosedForm, ManySidedCylinderApproachesTheCircularOne) {
-    // Not a spec shape (Doom clamps to 10), but the prism formula must tend to πr²h, m(3r²+h²)/12.
+    // Not a shape Doom builds (it clamps to 10 sides), but the prism formula must tend to πr²h, m(3r²+h²)/12.
     const MassProperties mp = massProperties(makeCylinder(Vec3(-1, -1, -2), Vec3(1, 1, 2), 720), 1);
     EXPECT_TRUE(nearRel(mp.mass, kPi * 4, 1e-4, 0));
     EXPECT_TRUE(nearRel(mp.inertia(0, 0), mp.mass * (3 + 16) / 12, 1e-4, 0));

@@ -1,6 +1,6 @@
 // Structural properties of the inertia tensor (symmetric positive definite, invariant under
 // translation, R·I·Rᵀ under rotation) and Doom's rules around it: degenerate fallbacks, density,
-// inertiaScale, totalMass, principal moments (doom3-af-spec.md §3.4).
+// inertiaScale, totalMass, principal moments (docs/figures.md §3.4).
 
 #include "geometry_test_util.h"
 

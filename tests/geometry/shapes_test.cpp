@@ -1,5 +1,5 @@
 // Vertex positions of every .af shape against values worked out by hand from
-// doom3-af-spec.md §1.6 and §3.3, side-count clamping, the bone frame, and body placement.
+// docs/formats.md §1.6 and docs/figures.md §3.3, side-count clamping, the bone frame, and body placement.
 
 #include "geometry_test_util.h"
 
@@ -29,7 +29,7 @@ TEST(Shapes, OctahedronVerticesAreBoxFaceCentres) {
 }
 
 TEST(Shapes, DodecahedronVerticesUseTheSpecConstantsScaledPerAxis) {
-    // The spec's literals; s_k = (v2 − v1)/(2c) is chosen as (1, 2, 3) by picking v2 to match.
+    // The literals of docs/figures.md §3.3, with v2 picked so that s_k = (v2 − v1)/(2c) is (1, 2, 3).
     const Real a = 0.5773502691896257, b = 0.3568220897730899, c = 0.9341723589627156;
     const Vec3 s(1, 2, 3);
     const Vec3 v1(1, 2, 3);

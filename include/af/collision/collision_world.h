@@ -3,7 +3,7 @@
 // (planes and convex brushes), and one query per step that returns the contact manifolds of
 // every pair that may collide.
 //
-// Which pairs collide (doom3-af-spec.md §4.8), in order:
+// Which pairs collide (docs/doom-physics.md §4.8), in order:
 //  * a body with clipMask 0 collides with nothing; otherwise A and B collide when A's clipMask
 //    meets B's contents or B's clipMask meets A's contents (the static world: its contents);
 //  * two bodies joined by a constraint other than a spring never collide (excludePair), and a

@@ -2,8 +2,8 @@
 // Contact rows: a point where body A touches body B (or the world), with Coulomb friction.
 // The collision stage will produce Contacts; until then tests make them by hand.
 //
-// Rows (spec §4.3, §4.7): one normal row  [n │ rA×n] − [n │ rB×n],  lo = 0, hi = +∞, so it only
-// pushes; its target is the restitution velocity when the bodies approach faster than
+// Rows (docs/doom-physics.md §4.3, §4.7): one normal row  [n │ rA×n] − [n │ rB×n],  lo = 0, hi = +∞, so it
+// only pushes; its target is the restitution velocity when the bodies approach faster than
 // restitutionThreshold, else 0; its error is the separation (negative when penetrating) plus a
 // small slop, which the position projection removes. Friction: two rows along tangents t1, t2
 // (or one along the body's frictionDirection projected into the contact plane), bounded by

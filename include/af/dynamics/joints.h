@@ -28,8 +28,8 @@
 
 namespace af {
 
-// Cone limit (§3.8): the limited shaft (body A) may deviate up to halfAngle from the cone axis
-// (body B). Doom's decl angle is the full apex angle, so halfAngle = angle/2.
+// Cone limit (docs/figures.md §3.8): the limited shaft (body A) may deviate up to halfAngle from the cone
+// axis (body B). Doom's decl angle is the full apex angle, so halfAngle = angle/2.
 struct ConeLimit {
     Vec3 axis = Vec3::UnitZ();  // body B frame (world if B is the world), unit
     Real halfAngle = 0;
@@ -37,7 +37,7 @@ struct ConeLimit {
     Real sinHalfAngle = 0;
 };
 
-// Pyramid limit (§3.8): basis in body B's frame, columns e0 = base, e1 = e0 × e2, e2 = axis.
+// Pyramid limit (docs/figures.md §3.8): basis in body B's frame, columns e0 = base, e1 = e0 × e2, e2 = axis.
 // The shaft's projection onto the (e0, e2) plane may deviate up to halfAngles[0] (= a1/2) from
 // e2, its projection onto the (e1, e2) plane up to halfAngles[1] (= a2/2).
 struct PyramidLimit {
@@ -45,11 +45,11 @@ struct PyramidLimit {
     Real halfAngles[2] = {0, 0};
 };
 
-// Hinge V limit (§3.8) as an interval of the hinge angle: the right-handed rotation of body A
+// Hinge V limit (docs/figures.md §3.8) as an interval of the hinge angle: the right-handed rotation of body A
 // relative to body B about the hinge axis, 0 at spawn (see hingeAngle). Allowed:
 // |wrap(angle − center)| ≤ halfWidth. With Doom's a1 (V centre), a2 (V width), a3 (shaft
 // orientation) in degrees, center = a3 − a1 and halfWidth = a2/2: Doom's clockwise angle
-// θ = −angle lies in [a1 − a3 − a2/2, a1 − a3 + a2/2], the spec's formula.
+// θ = −angle lies in [a1 − a3 − a2/2, a1 − a3 + a2/2], that section's formula.
 struct HingeLimit {
     Real center = 0;
     Real halfWidth = 0;
@@ -166,8 +166,8 @@ JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodi
                              std::span<const Mat3> inverseInertiaWorld, const JointRowSettings& settings,
                              ConstraintRows& out);
 
-// Doom's spring force (§4.3), quadratic in the displacement, added to the bodies' external
-// force and torque. Does nothing for other joint types.
+// Doom's spring force (docs/doom-physics.md §4.3), quadratic in the displacement, added to the bodies'
+// external force and torque. Does nothing for other joint types.
 void applySpringForces(const Joint& joint, std::span<RigidBody> bodies);
 
 // Distance between the two bodies' copies of the anchor; slider: the off-axis distance; fixed:

@@ -3,7 +3,7 @@
 // an exact principal-pivoting one (the reference) and projected Gauss–Seidel (the fallback).
 // Pure mathematics on dense matrices: no bodies and no constraints are involved here.
 //
-// The problem, with the sign convention of Doom 3's idLCP (doom3-af-spec.md §4.6):
+// The problem, with the sign convention of Doom 3's idLCP (docs/doom-physics.md §4.6):
 //
 //     (A + diag(cfm)) x = b + w,      lo ≤ x ≤ hi,
 //
@@ -89,7 +89,7 @@ struct LcpResult {
     std::span<const int> failedRows;  ///< original row indices; valid until the solver's next call
 };
 
-/// Settings of the exact solver (plain data, see ARCHITECTURE.md "settings are plain structs").
+/// Settings of the exact solver (plain data, as every settings struct is).
 struct LcpExactSettings {
     /// Added to every diagonal entry on top of LcpProblem::cfm. Zero by default: the problem is
     /// solved as given. Set it when rows may be redundant and the caller gives no per-row CFM.

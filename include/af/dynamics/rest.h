@@ -1,11 +1,12 @@
 #pragma once
-// Doom's rest (suspend) test of a whole figure, TestIfAtRest (doom3-af-spec.md §4.11), as a
+// Doom's rest (suspend) test of a whole figure, TestIfAtRest (docs/doom-physics.md §4.11), as a
 // runtime object that knows nothing of the World: the caller hands it every body's motion after
 // a step, and when it says "at rest" the caller zeroes the velocities and stops solving.
 //
 // One monitor watches ALL bodies of one figure and answers for all of them: a figure sleeps and
 // wakes as a whole, so no limb is left hanging in the air because a neighbour fell asleep, and
-// one moving body keeps the whole figure awake (users.md §2.3).
+// one moving body keeps the whole figure awake (engines that sleep body by body leave limbs
+// hanging in the air).
 //
 // Units: lengths in file units, time in s, angular velocity in rad/s, accelerations in units/s²
 // and rad/s², the windowed rotation tolerance in degrees; world frame throughout.
@@ -19,8 +20,8 @@
 namespace af {
 
 // The thresholds. The defaults are those of Doom's physics object before a decl overrides them
-// (§4.12); a figure from an .af uses restSettingsFrom(decl settings), whose defaults are the
-// decl's (20, 30, 40, 60). Doom's constructor takes the linear acceleration constant for the
+// (docs/doom-physics.md §4.12); a figure from an .af uses restSettingsFrom(decl settings), whose defaults are
+// the decl's (20, 30, 40, 60). Doom's constructor takes the linear acceleration constant for the
 // angular one; here it is its own constant, 30.
 struct RestSettings {
     Real suspendLinearVelocity = 10;       // units/s
@@ -82,7 +83,7 @@ public:
     // time back to 0 and the window closed. Doom resets the awake time only when waking a resting
     // figure; here every wake resets it, so a figure pushed or dragged for longer than
     // maxMoveTime is not put to rest under the user's hand only to wake on the next push
-    // (users.md §2.3: "applying a force must reset the sleep timer").
+    // (a figure put to sleep under a steady force wakes and sleeps again and again, and jitters).
     void wake();
 
     // Rest at once (Doom's PutToRest: a collision callback, a figure leaving the world).

@@ -26,14 +26,14 @@ struct RigidBody {
     Mat3 inertia = Mat3::Identity();       // body frame, about the centre of mass
     Mat3 inverseInertia = Mat3::Zero();    // body frame; zero for a static body
 
-    // Doom's air friction (§4.7): the fraction of velocity removed per 1/60 s step.
+    // Doom's air friction (docs/doom-physics.md §4.7): the fraction of velocity removed per 1/60 s step.
     Real linearFriction = 0;
     Real angularFriction = 0;
 
     // A body with the given mass and body-frame inertia (inertiaScale may make it unsymmetric;
     // the symmetric part is used), at rest, orientation normalised.
     // Throws std::invalid_argument if mass is not finite and > 0, or the inertia has a non-finite
-    // entry: both are bugs upstream (the figure stage already replaces bad masses, §3.4).
+    // entry: both are bugs upstream (the figure stage already replaces bad masses, docs/figures.md §3.4).
     // A symmetric part that is not positive definite (inertiaScale can do that) is repaired, not
     // refused: eigenvalues below 1e-6·λmax are raised to 1e-6·λmax (the nearest matrix in the
     // Frobenius norm with that floor), and one with no positive eigenvalue becomes the identity,

@@ -1,12 +1,12 @@
 #pragma once
 // The fast path of the constraint solve: a figure's joint tree factorised in time linear in the
-// number of bodies (Baraff 1996, doom3-af-spec.md §4.4), and every other row solved as a boxed
-// LCP on the small Schur complement that the tree leaves (§4.5), warm-started from the previous
-// solve. It gives the same impulses as the dense path (RowSystem + LcpExactSolver) on the same
+// number of bodies (Baraff 1996, docs/doom-physics.md §4.4), and every other row solved as a boxed
+// LCP on the small Schur complement that the tree leaves (docs/doom-physics.md §4.5), warm-started from the
+// previous solve. It gives the same impulses as the dense path (RowSystem + LcpExactSolver) on the same
 // rows, up to rounding.
 //
-// Primary rows (§4.2, as a spanning forest rather than Doom's body1-has-no-parent rule): joints
-// are taken in their order; a joint is primary when it has equality rows (not a spring) and joins
+// Primary rows (docs/doom-physics.md §4.2, as a spanning forest rather than Doom's body1-has-no-parent rule):
+// joints are taken in their order; a joint is primary when it has equality rows (not a spring) and joins
 // two parts of the figure not yet joined, where the world (and any static body) is one part. So
 // the first joint to the world roots its body's tree, and a joint that would close a loop, a
 // second path to the world included, stays auxiliary with all its rows. Only the equality rows of

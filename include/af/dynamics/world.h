@@ -24,7 +24,7 @@
 //     older joint errors, limit and contact penetration. Correcting them by moving positions
 //     instead of adding Baumgarte velocity keeps a resting figure from gaining energy.
 //
-// Rest and wake (doom3-af-spec.md §4.11, rest.h): after each step every awake figure's
+// Rest and wake (docs/doom-physics.md §4.11, rest.h): after each step every awake figure's
 // RestMonitor is asked. Figures that touch each other form a group that rests only when all of
 // them would, and then rests together; a resting figure's bodies have zero velocity, are not
 // integrated and cost no solver time. A resting figure wakes, with everything it touches, when

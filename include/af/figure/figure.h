@@ -1,5 +1,5 @@
 #pragma once
-// A figure: an .af decl made concrete against a skeleton pose (doom3-af-spec.md §3).
+// A figure: an .af decl made concrete against a skeleton pose (docs/figures.md).
 //
 // Every body has its reference point at its centre of mass (as in Doom). Poses and constraint
 // vectors are in world space at spawn: the decl's model-space values (resolved against the
@@ -30,7 +30,7 @@ struct FigureBody {
     Mat3 inertia = Mat3::Identity(); // about the centre of mass, body frame, inertiaScale applied
     RigidPose pose;                  // world pose at spawn (position = centre of mass)
 
-    // How the body drives the skeleton (§3.6): the joint, and the body's pose in that joint's
+    // How the body drives the skeleton (docs/figures.md §3.6): the joint, and the body's pose in that joint's
     // frame at the af_pose. The root body drives the first child of the `origin` joint.
     int joint = -1;
     JointMod mod = JointMod::Orientation;
@@ -101,7 +101,7 @@ struct FigureResult {
 };
 
 // Builds the figure of `decl` against the af_pose skeleton and places it. `afFile` names the .af
-// file in diagnostics. Warnings flag what usually makes figures misbehave (spec §6): unknown
+// file in diagnostics. Warnings flag what usually makes figures misbehave (docs/doom-quirks.md): unknown
 // joints, mass ratios above 1:20 between jointed bodies, inertia tensors with principal moments
 // more than 20 apart, jointed bodies overlapping at spawn, bodies in more than one tree.
 FigureResult buildFigure(const DeclAF& decl, const Skeleton& afPose, const std::string& afFile,
@@ -111,13 +111,13 @@ FigureResult buildFigure(const DeclAF& decl, const Skeleton& afPose, const std::
 // well-formed figure is one tree. Groups are ordered by their first body.
 std::vector<std::vector<int>> bodyTrees(const Figure& figure);
 
-// The skeleton the bodies pose (§3.6), in world space: driven joints follow their bodies as
+// The skeleton the bodies pose (docs/figures.md §3.6), in world space: driven joints follow their bodies as
 // their `mod` says, every other joint follows its parent with its af_pose local transform, and
 // the root joint follows body 0. `bodyPoses` holds one world pose per body.
 Skeleton poseSkeleton(const Figure& figure, const std::vector<RigidPose>& bodyPoses);
 
-// The joints of a containedJoints list (§1.6): `name`, `*name` (with descendants), `-name` and
-// `-*name` (removals), left to right, case-insensitive. Unknown names are returned in `unknown`.
+// The joints of a containedJoints list (docs/formats.md §1.6): `name`, `*name` (with descendants), `-name`
+// and `-*name` (removals), left to right, case-insensitive. Unknown names are returned in `unknown`.
 std::vector<int> expandJointList(const Skeleton& skeleton, std::string_view list,
                                  std::vector<std::string>* unknown = nullptr);
 

@@ -3,7 +3,7 @@
 //
 // Convention: a JointTransform maps joint-local points to the enclosing space,
 // p = position + rotation * p_local, with column vectors (af/types.h). md5 files store Doom's
-// conjugated quaternions (spec §0.2); rotationFromMd5 converts them, and nothing else does.
+// conjugated quaternions (docs/conventions.md §0.2); rotationFromMd5 converts them, and nothing else does.
 
 #include "af/geometry/math.h"
 #include "af/text/md5.h"
@@ -39,7 +39,7 @@ struct Skeleton {
 // The bind pose of an md5mesh, which is written in model space.
 Skeleton skeletonFromMd5Mesh(const Md5Mesh& mesh);
 
-// The AF pose of spec §2.3: frame `frame` of an md5anim, composed from parent-relative poses into
+// The AF pose of docs/formats.md §2.3: frame `frame` of an md5anim, composed from parent-relative poses into
 // model space (parents first), with `rootOffset` (a model decl's `offset`) added to the root.
 Skeleton skeletonFromMd5Anim(const Md5Anim& anim, int frame, const Vec3& rootOffset = Vec3::Zero());
 

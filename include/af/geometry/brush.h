@@ -1,6 +1,6 @@
 #pragma once
 // The solid of a map brush: the convex polytope where all its half-spaces a·x + b·y + c·z + d ≤ 0
-// overlap (doom3-af-spec.md §5.6). Frame and units: those of the map (world, Doom units; brush
+// overlap (docs/formats.md §5.6). Frame and units: those of the map (world, Doom units; brush
 // planes are not offset by the entity origin).
 //
 // Vertices are the intersections of plane triples that lie inside every other half-space,

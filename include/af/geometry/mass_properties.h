@@ -1,6 +1,6 @@
 #pragma once
 // Exact mass properties of convex polytopes, and Doom 3's rules for turning them into a body's
-// mass and inertia (doom3-af-spec.md §3.3, §3.4; D3 idTraceModel::GetMassProperties,
+// mass and inertia (docs/figures.md §3.3, §3.4; D3 idTraceModel::GetMassProperties,
 // idAFBody::SetDensity, idPhysics_AF::BuildTrees).
 //
 // Frames and units: results are in the polytope's own frame (for an .af body, its body frame).

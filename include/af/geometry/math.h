@@ -1,7 +1,7 @@
 #pragma once
 // Eigen vocabulary of the geometry stage and the one bridge from Doom's angles to our rotations.
 //
-// Convention (see also af/types.h and doom3-af-spec.md §0.2): column vectors. A rotation R maps
+// Convention (see also af/types.h and docs/conventions.md §0.2): column vectors. A rotation R maps
 // body-local vectors to world (or model) vectors, p_world = origin + R * p_local, so the columns of
 // R are the body's local X, Y, Z axes written in world coordinates. Doom stores the transpose: its
 // "axis" matrix A has the local axes as rows and multiplies row vectors, p_world = origin + p_local·A.
@@ -37,7 +37,7 @@ struct RigidPose {
 Mat3 rotationFromAngles(Real pitchDeg, Real yawDeg, Real rollDeg);
 
 /// The inverse: (pitch, yaw, roll) in degrees of a rotation, as Doom's idMat3::ToAngles reads
-/// them (§0.2), including its choice near gimbal lock (yaw from the left axis, roll 0).
+/// them (docs/conventions.md §0.2), including its choice near gimbal lock (yaw from the left axis, roll 0).
 Vec3 anglesFromRotation(const Mat3& rotation);
 
 }  // namespace af

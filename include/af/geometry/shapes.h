@@ -1,6 +1,6 @@
 #pragma once
-// The convex shapes of an .af body `model`, built as Doom 3 builds them (doom3-af-spec.md §1.6,
-// §3.3; D3 idAF::LoadBody and idTraceModel::Setup*), from values already resolved to numbers.
+// The convex shapes of an .af body `model`, built as Doom 3 builds them (docs/formats.md §1.6,
+// docs/figures.md §3.3; D3 idAF::LoadBody and idTraceModel::Setup*), from values already resolved to numbers.
 //
 // Frames: v1 and v2 of box/octahedron/dodecahedron/cylinder/cone are bounds in the BODY frame.
 // The body frame sits at `origin` (model space) with rotation R = rotationFromAngles(angles)
