@@ -12,7 +12,7 @@
 // (column vectors, p_world = origin + R p_local); its columns are the body's local axes.
 // Doom's "axis" matrices are the transpose (rows are the local axes, row vectors). Doom and
 // md5 quaternions are conjugated with respect to the usual v' = q v q^-1 convention; the
-// readers convert once at the boundary (see doom3-af-spec.md §0.2).
+// readers convert once at the boundary (see docs/conventions.md §0.2).
 
 #include <array>
 

@@ -1,4 +1,4 @@
-// `body "NAME" { ... }` blocks (doom3-af-spec.md §1.6).
+// `body "NAME" { ... }` blocks (docs/formats.md §1.6).
 
 #include "af/text/number_format.h"
 #include "af/text/strings.h"

@@ -1,5 +1,5 @@
 // Constraint blocks: fixed, ballAndSocketJoint, universalJoint, hinge, slider, spring
-// (doom3-af-spec.md §1.7).
+// (docs/formats.md §1.7).
 
 #include "af/text/number_format.h"
 #include "af_parser_impl.h"

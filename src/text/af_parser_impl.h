@@ -36,7 +36,7 @@ private:
 };
 
 // Post-parse checks of a complete decl (names, references, required values) and the move of
-// the origin body to index 0 (§1.3, §1.8).
+// the origin body to index 0 (docs/formats.md §1.3, §1.8).
 void validateDecl(DeclAF& decl, Diagnostics& diagnostics);
 
 }  // namespace af

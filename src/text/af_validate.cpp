@@ -1,4 +1,4 @@
-// Checks that need the whole decl (doom3-af-spec.md §1.3, §1.8), and the origin-body swap.
+// Checks that need the whole decl (docs/formats.md §1.3, §1.8), and the origin-body swap.
 
 #include "af/text/number_format.h"
 #include "af/text/strings.h"

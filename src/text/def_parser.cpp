@@ -1,5 +1,5 @@
 // `.def` decl files: entityDef and model decls kept, every other kind skipped by brace matching
-// (doom3-af-spec.md §1.1, §2.4, §2.5).
+// (docs/formats.md §1.1, §2.4, §2.5).
 
 #include "af/text/decl_def.h"
 #include "af/text/strings.h"

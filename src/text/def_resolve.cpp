@@ -1,4 +1,4 @@
-// The collection of .def decls and inheritance resolution (doom3-af-spec.md §2.4, §2.5).
+// The collection of .def decls and inheritance resolution (docs/formats.md §2.4, §2.5).
 
 #include "af/text/decl_def.h"
 #include "af/text/strings.h"

@@ -1,4 +1,4 @@
-// Reading Doom 3 `.map` files (doom3-af-spec.md §5.6). Errors are fatal here, as in Doom's map
+// Reading Doom 3 `.map` files (docs/formats.md §5.6). Errors are fatal here, as in Doom's map
 // reader: the first one is reported and reading stops.
 
 #include "af/text/map_file.h"

@@ -1,5 +1,5 @@
-// The canonical `.map` writer: Doom 3's editor layout (doom3-af-spec.md §5.6), numbers in the
-// house format of §1.10.
+// The canonical `.map` writer: Doom 3's editor layout (docs/formats.md §5.6), numbers in the
+// house format of docs/formats.md §1.10.
 
 #include "af/text/map_file.h"
 #include "text_writer.h"

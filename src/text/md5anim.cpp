@@ -1,4 +1,4 @@
-// `.md5anim` files (doom3-af-spec.md §2.2) and the evaluation of one frame.
+// `.md5anim` files (docs/formats.md §2.2) and the evaluation of one frame.
 
 #include "af/text/md5.h"
 #include "md5_common.h"

@@ -1,4 +1,4 @@
-// `.md5mesh` files (doom3-af-spec.md §2.1): the bind-pose skeleton is kept, the mesh blocks are
+// `.md5mesh` files (docs/formats.md §2.1): the bind-pose skeleton is kept, the mesh blocks are
 // read only to prove the file well-formed.
 
 #include "af/text/md5.h"

@@ -1,6 +1,6 @@
 // ResourceIndex: loading md5 files (cached) and resolving an AF entity or a figure to everything
-// a ragdoll needs (doom3-af-spec.md §2.4, §2.5, §3.1 steps 1-2). Each step goes on after a
-// failure where it can, so one call names every missing piece.
+// a ragdoll needs (docs/formats.md §2.4, §2.5; docs/figures.md §3.1 steps 1-2). Each step goes on
+// after a failure where it can, so one call names every missing piece.
 
 #include "resource_index_impl.h"
 
@@ -205,7 +205,8 @@ AFResources ResourceIndex::resolveAFEntity(std::string_view entityDefName) const
     out.entity = *entity;
     const NamedAt entityAt{entity->file, entity->where};
 
-    // idAFEntity_* read `articulatedFigure`; actors and animated props read `ragdoll` (spec §2.5).
+    // idAFEntity_* read `articulatedFigure`; actors and animated props read `ragdoll`
+    // (docs/formats.md §2.5).
     const DefKeyValue* figureKey = entity->find("articulatedFigure");
     if (!figureKey || figureKey->value.empty()) figureKey = entity->find("ragdoll");
     if (!figureKey || figureKey->value.empty()) {
@@ -231,7 +232,7 @@ AFResources ResourceIndex::resolveAFEntity(std::string_view entityDefName) const
     }
 
     // The iddevnet form: "model" is the md5mesh itself and "anim af_pose" the pose. The GPL code
-    // cannot load it; the spec's compatibility advice is to make up the model decl they imply.
+    // cannot load it; we make up the model decl they imply (docs/formats.md §2.5).
     const DefKeyValue* animKey = entity->find("anim af_pose");
     if (!animKey || animKey->value.empty()) {
         out.diagnostics.push_back(errorAt(modelAt, entity->file,

@@ -1,4 +1,4 @@
-// What the .af parser reads: every key, default and quirk of doom3-af-spec.md §1.4–§1.9.
+// What the .af parser reads: every key, default and quirk of docs/formats.md §1.4–§1.9.
 
 #include "af/text/contents.h"
 #include "af_test_util.h"

@@ -1,5 +1,5 @@
 #pragma once
-// Reading `.af` files into DeclAF data (doom3-af-spec.md §1).
+// Reading `.af` files into DeclAF data (docs/formats.md §1).
 //
 // Every problem is a Diagnostic with its position; a file with any error does not load. After
 // a structural error (a missing brace, an unknown keyword) the parser skips to the end of that

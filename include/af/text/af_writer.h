@@ -1,5 +1,5 @@
 #pragma once
-// The canonical `.af` writer: the Doom 3 AF editor's layout (doom3-af-spec.md §1.10).
+// The canonical `.af` writer: the Doom 3 AF editor's layout (docs/formats.md §1.10).
 //
 // parse(write(d)) == d for every decl d we parse, and write(parse(write(d))) == write(d) byte
 // for byte. Where we differ from Doom's editor, on purpose:

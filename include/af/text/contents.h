@@ -1,5 +1,5 @@
 #pragma once
-// Names of contents bits as .af files write them (doom3-af-spec.md §1.9).
+// Names of contents bits as .af files write them (docs/formats.md §1.9).
 
 #include "af/text/decl_af.h"
 

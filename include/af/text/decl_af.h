@@ -1,6 +1,6 @@
 #pragma once
 // Plain data for `.af` articulated-figure decls: what the file said, nothing resolved.
-// Field meanings, defaults and quirks follow doom3-af-spec.md §1.4–§1.9.
+// Field meanings, defaults and quirks follow docs/formats.md §1.4–§1.9.
 //
 // Numbers are held at float precision (each value is a float widened to af::Real), because
 // that is what Doom's lexer produces and what the canonical writer prints back exactly. Vectors
@@ -37,7 +37,7 @@ constexpr ContentsMask AasObstacle = 1u << 14;
 constexpr ContentsMask FlashlightTrigger = 1u << 15;
 }  // namespace contents
 
-// One vector value in its written form (§1.4).
+// One vector value in its written form (docs/formats.md §1.4).
 struct AFVector {
     enum class Kind : std::uint8_t { Coordinates, Joint, BoneCenter, BoneDir };
 
@@ -60,9 +60,10 @@ struct AFVector {
 
 enum class ShapeType : std::uint8_t { Box, Octahedron, Dodecahedron, Cylinder, Cone, Bone, Custom };
 
-// A body's `model` (§1.6). For box, octahedron, dodecahedron, cylinder and cone, v1 and v2 are
-// the min and max corners in body-local coordinates; for bone they are the two model-space end
-// points. numSides is kept as written (the shape builder clamps it), width is the bone's.
+// A body's `model` (docs/formats.md §1.6). For box, octahedron, dodecahedron, cylinder and cone,
+// v1 and v2 are the min and max corners in body-local coordinates; for bone they are the two
+// model-space end points. numSides is kept as written (the shape builder clamps it), width is
+// the bone's.
 struct AFShape {
     ShapeType type = ShapeType::Box;
     AFVector v1 = AFVector::literal(-10, -10, -10);
@@ -74,7 +75,7 @@ struct AFShape {
     friend bool operator==(const AFShape&, const AFShape&) = default;
 };
 
-// How a body drives its skeleton joint (§3.6).
+// How a body drives its skeleton joint (docs/figures.md §3.6).
 enum class JointMod : std::uint8_t { Orientation, Position, Both };
 
 // Keywords of later id Tech 4 games (Quake 4, Enemy Territory: Quake Wars) that we read and
@@ -91,7 +92,8 @@ struct AFSettings {
     Real linearFriction = Real(0.01f);
     Real angularFriction = Real(0.01f);
     Real contactFriction = Real(0.8f);
-    Real constraintFriction = Real(0.5f);  // seeds editor-made constraints only (§1.7)
+    // Seeds editor-made constraints only (docs/formats.md §1.7).
+    Real constraintFriction = Real(0.5f);
     Real suspendLinearVelocity = 20;       // units/s
     Real suspendAngularVelocity = 30;      // rad/s
     Real suspendLinearAcceleration = 40;   // units/s²
@@ -144,7 +146,7 @@ struct AFBody {
 enum class ConstraintType : std::uint8_t { Fixed, BallAndSocket, Universal, Hinge, Slider, Spring };
 enum class LimitType : std::uint8_t { None, Cone, Pyramid };
 
-// One constraint block (§1.7). Which fields mean something depends on the type:
+// One constraint block (docs/formats.md §1.7). Which fields mean something depends on the type:
 //  fixed        body1, body2
 //  ball/socket  anchor, friction, limit (cone: limitAxis, limitAngles[0], shafts[0];
 //               pyramid: limitAxis, limitAngles[0..2], shafts[0])

@@ -1,5 +1,5 @@
 #pragma once
-// `.def` decl files (doom3-af-spec.md §1.1, §2.4, §2.5): the `entityDef` and `model` decls kept
+// `.def` decl files (docs/formats.md §1.1, §2.4, §2.5): the `entityDef` and `model` decls kept
 // as plain data, every other decl kind skipped, and inheritance resolved as a separate step.
 //
 // A file is a sequence of `TYPE NAME { ... }`. The type keyword is case-insensitive; a name
@@ -76,7 +76,7 @@ struct ModelDecl {
     std::string mesh;         // the .md5mesh path
     SourceLocation meshWhere;
     std::string skin;
-    std::optional<Real3> offset;  // added to the root joint of the AF pose (§2.3)
+    std::optional<Real3> offset;  // added to the root joint of the AF pose (docs/formats.md §2.3)
     std::vector<ModelChannel> channels;
     std::vector<ModelAnim> anims;
     std::vector<ModelRemove> removes;
@@ -143,7 +143,7 @@ struct ResolvedDefs {
     std::string formatDiagnostics() const;
 };
 
-// Resolves inheritance in every decl, as Doom does after parsing (§2.4, §2.5):
+// Resolves inheritance in every decl, as Doom does after parsing (docs/formats.md §2.4, §2.5):
 //  * entityDef: `classname` is set to the decl's canonical name; every key starting with
 //    "inherit" (ignoring case) names a parent, in key order; the keys are removed and each
 //    resolved parent fills in the keys the decl does not set;

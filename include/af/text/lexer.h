@@ -1,7 +1,7 @@
 #pragma once
 // An idLexer-compatible tokenizer for Doom 3 decl text (.af, .def, .md5mesh, .md5anim, .map).
 //
-// The rules, as idLexer applies them with the decl flags (doom3-af-spec.md §1.2):
+// The rules, as idLexer applies them with the decl flags (docs/formats.md §1.2):
 //  * every byte <= 0x20 is white space (so "\r\n", a lone "\r" and a trailing NUL are too);
 //    comments are `// ...` and `/* ... */` (they do not nest);
 //  * strings are "..." with no escapes; '...' is a literal; `"a" \ "b"` joins two strings;

@@ -1,5 +1,5 @@
 #pragma once
-// Doom 3 `.map` files as plain data (doom3-af-spec.md §5.6): a reader that keeps everything it
+// Doom 3 `.map` files as plain data (docs/formats.md §5.6): a reader that keeps everything it
 // reads and a canonical writer.
 //
 // Entities are key/value pairs plus primitives. brushDef3 brushes and patchDef2/patchDef3
@@ -7,7 +7,7 @@
 // brushes) is kept as its text and written back unchanged.
 //
 // Numbers: every number is held as the float Doom stores, widened to double (Real), so that the
-// writer's house format (formatDeclFloat, §1.10) reads back to the same value.
+// writer's house format (formatDeclFloat, docs/formats.md §1.10) reads back to the same value.
 // Coordinates: as written in the file, in Doom units. Doom subtracts an entity's `origin` from
 // its patch control points and old-style brush points when it reads them and adds it back when
 // it writes; we keep what the file says and do neither.
@@ -168,12 +168,12 @@ MapParseResult parseMapFile(std::string_view text, std::string fileName);
 // Reads and parses a file; a file that cannot be read is an error diagnostic.
 MapParseResult loadMapFile(const std::string& path);
 
-// The canonical text (§5.6): `Version <v>`, then each entity as `// entity i`, `{`, its pairs
-// `"key" "value"` in order, each primitive as `// primitive j` (brushDef3 and patches in Doom's
-// editor layout, raw primitives as kept), `}`. Numbers are written with formatDeclFloat. Every
-// line ends with "\n". parse(write(m)) == m for every map that parse gives, and
-// write(parse(write(m))) == write(m). Strings must not contain `"` or line breaks (the format
-// has no escapes); parsed maps never do.
+// The canonical text (docs/formats.md §5.6): `Version <v>`, then each entity as `// entity i`,
+// `{`, its pairs `"key" "value"` in order, each primitive as `// primitive j` (brushDef3 and
+// patches in Doom's editor layout, raw primitives as kept), `}`. Numbers are written with
+// formatDeclFloat. Every line ends with "\n". parse(write(m)) == m for every map that parse
+// gives, and write(parse(write(m))) == write(m). Strings must not contain `"` or line breaks (the
+// format has no escapes); parsed maps never do.
 // Where we differ from Doom's writer, on purpose: the version written is the map's own (Doom
 // writes 2 after prefixing old material names on read; we keep names as spelled), the side flags
 // are written as kept, and patch key/value pairs are written after the control points.

@@ -1,12 +1,13 @@
 #pragma once
-// Reading `.md5mesh` skeletons and `.md5anim` animations (doom3-af-spec.md §2.1, §2.2) into plain
+// Reading `.md5mesh` skeletons and `.md5anim` animations (docs/formats.md §2.1, §2.2) into plain
 // data, and evaluating one animation frame to parent-relative joint poses.
 //
 // Quaternion convention: every quaternion here is Doom's, exactly as the file writes it. Doom
 // turns (x, y, z, w) into a matrix with the usual Hamilton formula but uses that matrix as a
 // row-vector "axis", so the rotation it performs is the CONJUGATE of what v' = q v q^-1 gives.
 // Anyone feeding these to a standard quaternion library must negate x, y, z (or w) first
-// (spec §0.2). The text stage leaves them untouched; the figure stage converts once.
+// (docs/conventions.md §0.2). The text stage leaves them untouched; the figure stage converts them
+// once.
 //
 // Numbers are held at float precision (each value is a float widened to af::Real), as Doom's
 // lexer produces them. The md5 keywords are case-sensitive, as Doom's ExpectTokenString is.
@@ -34,7 +35,8 @@ struct Md5Quat {
 };
 
 // md5 files store x, y, z only; w is non-negative. The absolute value guards against rounding
-// that makes x² + y² + z² slightly exceed 1 (spec §2.1; Doom's idCQuat::ToQuat does the same).
+// that makes x² + y² + z² slightly exceed 1 (docs/formats.md §2.1; Doom's idCQuat::ToQuat does
+// the same).
 inline Real md5QuatW(Real x, Real y, Real z) { return std::sqrt(std::fabs(1 - (x * x + y * y + z * z))); }
 
 inline Md5Quat md5QuatFromXyz(Real x, Real y, Real z) { return {x, y, z, md5QuatW(x, y, z)}; }
@@ -108,8 +110,8 @@ struct Md5JointPose {
     Md5Quat orientation;
 };
 
-// The file as written. The root-translation rule of §2.2 is NOT applied to this data (so it can
-// be written back unchanged); evaluateMd5AnimFrame applies it.
+// The file as written. The root-translation rule of docs/formats.md §2.2 is NOT applied to this
+// data (so it can be written back unchanged); evaluateMd5AnimFrame applies it.
 struct Md5Anim {
     std::string commandLine;
     int frameCount = 0;
@@ -144,8 +146,8 @@ Md5AnimParseResult loadMd5AnimFile(const std::string& path);
 //  * the root (joint 0) translation is relative to the baseframe: animated root axes give
 //    "frame value − baseframe value" (rounded to float, as Doom stores it), other root axes 0.
 // Frame 0 includes its components, unlike Doom's GetSingleFrame(0), which returns the baseframe
-// (spec §2.3 recommends frame 0 for the AF pose). Conversion to model space and the quaternion
-// conjugation are the figure stage's job. Throws std::out_of_range for a frame outside
+// (docs/formats.md §2.3: we use frame 0 for the AF pose). Conversion to model space and the
+// quaternion conjugation are the figure stage's job. Throws std::out_of_range for a frame outside
 // [0, frameCount) and std::invalid_argument for an anim whose sizes do not agree (one that did
 // not parse cleanly).
 std::vector<Md5JointPose> evaluateMd5AnimFrame(const Md5Anim& anim, int frame);

@@ -1,5 +1,5 @@
 #pragma once
-// Writing `.md5anim` files (doom3-af-spec.md §2.2) that our reader and id Tech 4 read back, and
+// Writing `.md5anim` files (docs/formats.md §2.2) that our reader and id Tech 4 read back, and
 // building an Md5Anim from per-frame joint transforms.
 //
 // Quaternions follow md5.h: Doom's (conjugated) convention, unchanged. A file stores x, y, z
@@ -19,8 +19,9 @@
 
 namespace af {
 
-// The whole file. `anim` is written as it is: the root-translation rule of §2.2 is the reader's,
-// so parseMd5Anim(writeMd5Anim(a)) holds a's values (rounded to float) and evaluates the same.
+// The whole file. `anim` is written as it is: the root-translation rule of docs/formats.md §2.2
+// is the reader's, so parseMd5Anim(writeMd5Anim(a)) holds a's values (rounded to float) and
+// evaluates the same.
 // Throws std::invalid_argument, and writes nothing, for an anim the reader would refuse: sizes
 // that do not agree (bounds and frames per numFrames, baseframe per joint, components per frame),
 // no frame or no joint, a negative frame rate, a hierarchy Doom does not accept (joint 0 a root,
@@ -36,12 +37,12 @@ std::string writeMd5Anim(const Md5Anim& anim);
 //    quaternion, as md5.h) in frame f; the root's translation is its model-space position;
 //  * bounds[f] is frame f's box in model space (one per frame, as the file wants).
 // Values are rounded to float, as a file holds them. Each orientation is normalised and given
-// w ≥ 0 (negated if needed), and its w recomputed from the rounded x, y, z, as the reader does,
-// so that the result equals what reading its own file gives. The baseframe is frame 0, with the
-// root translation 0: Doom makes the root's frame translations relative to the baseframe's and
-// then sets that one to 0 (§2.2), so a zero root baseframe keeps frame values as they are, and
-// Doom's baseframe-only view of frame 0 (§2.3) then differs from frame 0 in the root translation
-// only.
+// w ≥ 0 (negated if needed), and its w recomputed from the rounded x, y, z, as the reader does, so
+// that the result equals what reading its own file gives. The baseframe is frame 0, with the root
+// translation 0: Doom makes the root's frame translations relative to the baseframe's and then
+// sets that one to 0 (docs/formats.md §2.2), so a zero root baseframe keeps frame values as they
+// are, and Doom's baseframe-only view of frame 0 (docs/formats.md §2.3) then differs from frame 0
+// in the root translation only.
 // Throws std::invalid_argument for sizes that do not agree, no joint or frame, a negative frame
 // rate, a parent list the format does not allow, an orientation of zero or non-finite length, or
 // anything writeMd5Anim would refuse.

@@ -1,5 +1,5 @@
 #pragma once
-// Number spelling of the canonical writer (doom3-af-spec.md §1.10).
+// Number spelling of the canonical writer (docs/formats.md §1.10).
 
 #include "af/types.h"
 

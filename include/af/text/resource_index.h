@@ -1,6 +1,6 @@
 #pragma once
-// Finding a figure's files in mod folders, by name, as Doom 3 does (doom3-af-spec.md §1.1,
-// §2.3-§2.5, §3.1).
+// Finding a figure's files in mod folders, by name, as Doom 3 does (docs/formats.md §1.1,
+// §2.3-§2.5; docs/figures.md §3.1).
 //
 // A root is a folder laid out like Doom's `base/`: `af/` holds `.af` files, `def/` holds `.def`
 // files, and paths such as `models/humanoid/humanoid.md5mesh` are relative to it. Our repository
@@ -83,7 +83,7 @@ struct AFResources {
     std::shared_ptr<const FigureEntry> figure;  // the AF decl and its file
     std::optional<ModelDecl> model;             // inheritance resolved, or implicit (below)
     // The entityDef names the md5mesh directly and has an `anim af_pose` key (the iddevnet
-    // example, spec §2.5); `model` is then made up from those two keys.
+    // example, docs/formats.md §2.5); `model` is then made up from those two keys.
     bool implicitModel = false;
     MeshLoad mesh;       // the model's `mesh`
     AnimLoad afPose;     // the model's `anim af_pose`

@@ -12,7 +12,7 @@ bool equalsIgnoreCase(std::string_view a, std::string_view b);
 std::string toLower(std::string_view s);
 
 // A decl name as Doom canonicalises it: `\` becomes `/`, lower case, and the text from the
-// last `.` on removed (doom3-af-spec.md §1.1).
+// last `.` on removed (docs/formats.md §1.1).
 std::string canonicalDeclName(std::string_view name);
 
 }  // namespace af
