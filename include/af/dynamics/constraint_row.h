@@ -51,10 +51,16 @@ public:
     }
     // Appends a row made in place from all of its members, in ConstraintRow's order: each is
     // written once (no temporary to copy, no default row zeroed first: a default row cost ~20 of
-    // the ~155 instructions of appending a joint row). Its index is size() − 1.
+    // the ~155 instructions of appending a joint row). Its index is size() − 1. A compiler without
+    // parenthesised aggregate initialisation (P0960: clang before 16) gets the same row made from
+    // braces and moved in.
     template <class... Members>
     void appendMade(Members&&... members) {
+#if defined(__cpp_aggregate_paren_init) && __cpp_aggregate_paren_init >= 201902L
         rows_.emplace_back(std::forward<Members>(members)...);
+#else
+        rows_.push_back(ConstraintRow{std::forward<Members>(members)...});
+#endif
     }
     std::size_t size() const { return rows_.size(); }
     ConstraintRow& operator[](std::size_t i) { return rows_[i]; }
