@@ -94,13 +94,19 @@ Real runChain(SolverKind solver, Real seconds) {
     if (solver == SolverKind::Exact) {
         EXPECT_EQ(world.solverFailures(), 0);
     }
+    if (solver == SolverKind::Pgs) {
+        EXPECT_GT(world.lastStep().iterations, 0) << "PGS solved the velocities";
+    }
     return worst;
 }
 
 TEST(WorldChain, TwentyLinksKeepTheirJointsWithinATenThousandthOfAUnit) {
     const Real exact = runChain(SolverKind::Exact, 10);
     EXPECT_LT(exact, 1e-4);
+    // With PGS for the velocities the projection (dense, as the chain is small) still closes the
+    // joints to positionTolerance (1e-10) every step: measured 1.05e-10 (exact 1.02e-10).
     const Real pgs = runChain(SolverKind::Pgs, 10);
+    EXPECT_LT(pgs, 5e-10);
     RecordProperty("max_joint_error_exact", std::to_string(exact));
     RecordProperty("max_joint_error_pgs", std::to_string(pgs));
     std::printf("hanging chain of 20, 10 s: max joint error exact %.3g, PGS %.3g units\n", exact, pgs);
