@@ -70,8 +70,13 @@ Real highestPoint(const Figure& figure) {
 void push(World& world, int figure, unsigned seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<Real> speed(-60, 60), spin(-1.5, 1.5);
-    const Vec3 v(speed(rng), speed(rng), 0);
-    const Vec3 w(spin(rng), spin(rng), spin(rng));
+    // Drawn one statement at a time, last component first: as arguments of one call the draws
+    // would be made in an order the compiler picks (GCC right to left, clang left to right), and
+    // a seed would push differently under each. This is GCC's order, which earlier pushes used.
+    const Real vy = speed(rng), vx = speed(rng);
+    const Real wz = spin(rng), wy = spin(rng), wx = spin(rng);
+    const Vec3 v(vx, vy, 0);
+    const Vec3 w(wx, wy, wz);
     const World::FigureRange r = world.figures()[static_cast<std::size_t>(figure)];
     Vec3 centre = Vec3::Zero();
     Real mass = 0;
