@@ -3,6 +3,10 @@
 //
 // With no arguments: our humanoid ragdoll (entityDef ragdoll_humanoid from def/) dropped onto
 // maps/default.map of this source tree.
+//
+// Exit status: 0 when the run finished (rested or not: the summary says which), 1 when a NaN or
+// an infinity appeared in the simulation, 2 for bad usage or bad input (an unknown option or
+// value, an unknown entity, a file that does not load or cannot be written).
 
 #include "sim_bake.h"
 #include "sim_output.h"
@@ -68,11 +72,11 @@ int simulate(Options& o) {
 int main(int argc, char** argv) {
     Options o;
     CLI::App app{"Drops Doom 3-style ragdolls into a world, simulates them until they rest and reports what happened."};
-    app.add_option("--entity", o.scene.entity, "entityDef to spawn (one with an articulatedFigure)")->capture_default_str();
-    app.add_option("--figure", o.scene.figure, "a bare .af decl to spawn instead, with its settings' model");
+    CLI::Option* entity = app.add_option("--entity", o.scene.entity, "entityDef to spawn (one with an articulatedFigure)")->capture_default_str();
+    app.add_option("--figure", o.scene.figure, "a bare .af decl to spawn instead, with its settings' model")->excludes(entity);
     app.add_option("--root", o.roots, "a mod folder laid out like Doom's base/ (repeat: lowest priority first)");
-    app.add_option("--map", o.map, ".map file whose worldspawn brushes are the world (default: maps/default.map)");
-    app.add_flag("--no-map", o.noMap, "drop onto an infinite floor at z = 0 instead of a map");
+    CLI::Option* map = app.add_option("--map", o.map, ".map file whose worldspawn brushes are the world (default: maps/default.map)");
+    CLI::Option* noMap = app.add_flag("--no-map", o.noMap, "drop onto an infinite floor at z = 0 instead of a map");
     app.add_option("--count", o.scene.count, "figures dropped in a pile")->check(CLI::Range(1, 1000))->capture_default_str();
     app.add_option("--seconds", o.run.seconds, "simulated time limit, seconds")->check(CLI::Range(0.001, 86400.0))->capture_default_str();
     app.add_option("--solver", o.solver, "constraint solver")->check(CLI::IsMember({"exact", "tree", "pgs"}))->capture_default_str();
@@ -83,10 +87,17 @@ int main(int argc, char** argv) {
     app.add_option("--plot", o.plot, "write a plot of kinetic energy and joint error over time");
     app.add_option("--trajectory", o.trajectory, "write every body's pose per step (JSON lines)");
     app.add_option("--md5anim", o.md5anim, "bake the first figure's skeleton motion into an .md5anim");
+    noMap->excludes(map);
     o.scene.world.timeStep = 1.0 / 60;
-    CLI11_PARSE(app, argc, argv);
-    if (!o.scene.figure.empty() && app.count("--entity")) {
-        std::cerr << "af-sim: error: give --entity or --figure, not both\n";
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // CLI11's own codes (105, 109, …) would say nothing to a script beyond "bad usage".
+        std::cerr << "af-sim: error: " << e.what() << "\n" << "Run with --help for the options.\n";
         return 2;
     }
     if (!o.scene.figure.empty()) o.scene.entity.clear();
