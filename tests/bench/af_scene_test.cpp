@@ -48,11 +48,13 @@ struct Drop {
     RunMetrics metrics{1};
     double limitViolation = 0;  // rad
     int sparseFallbacks = 0;  // velocity and position solves the sparse path handed on
+    double slop = 0;          // m: the world's contact slop
 };
 
 Drop dropTheRagdoll(af::SolverKind solver) {
     af::World world = buildAfWorld("single", solver, false);
     Drop run;
+    run.slop = world.settings().contact.slop;
     std::vector<BodyState> states;
     readStates(world, states);
     run.metrics.setInitial(states);
@@ -68,19 +70,21 @@ Drop dropTheRagdoll(af::SolverKind solver) {
 
 void expectTightJointsAndRest(const Drop& run) {
     const RunMetrics& metrics = run.metrics;
+    std::printf("joint err %.3g m, joint ang err %.3g rad, limit violation %.3g rad, ground pen %.6g m, "
+                "energy gain %.3g J, rest step %d, sparse fallbacks %d\n",
+                metrics.jointErrMax(), metrics.jointAngErrMax(), run.limitViolation, metrics.groundPenMax(),
+                metrics.energyGainMax(), metrics.restStep().value_or(-1), run.sparseFallbacks);
+    // Bounds a few times what the exact and tree solvers achieve (measured: joints 1.3e-10 m,
+    // locked rotations 7e-11 to 1.2e-10 rad, limits 1e-10 rad, 2e-12 J gained, rest at step 103).
     EXPECT_FALSE(metrics.exploded());
-    EXPECT_LT(metrics.jointErrMax(), 1e-6);  // m
-    EXPECT_LT(metrics.groundPenMax(), 0.002);  // m: the slop (1.27 mm) and a little
-    EXPECT_LT(metrics.energyGainMax(), 0.1);   // J, of 1380 J at the start
-    ASSERT_TRUE(metrics.restStep().has_value());
-    EXPECT_LT(*metrics.restStep(), 300);  // at rest within 5 s of the drop
-    EXPECT_LT(run.limitViolation, 1e-6) << "a joint past its §2 limit, rad";  // measured ~1e-10
+    EXPECT_LT(metrics.jointErrMax(), 1e-9);  // m
     // The locked rotations (fixed joints, hinge axes, the hips' arms ⟂) hold as tightly as the anchors.
-    EXPECT_LT(metrics.jointAngErrMax(), 1e-6);  // rad
-    std::printf("limit violation %.6g rad, joint ang err %.6g rad, rest step %d, ground pen %.6g m, "
-                "sparse fallbacks %d\n",
-                run.limitViolation, metrics.jointAngErrMax(), *metrics.restStep(), metrics.groundPenMax(),
-                run.sparseFallbacks);
+    EXPECT_LT(metrics.jointAngErrMax(), 1e-9);  // rad
+    EXPECT_LT(run.limitViolation, 1e-9) << "a joint past its docs/bench-scene.md §2 limit, rad";
+    EXPECT_LT(metrics.groundPenMax(), run.slop * 1.02);  // m: the slop and the projection's tolerance
+    EXPECT_LT(metrics.energyGainMax(), 1e-9);         // J, of 1380 J at the start: rounding
+    ASSERT_TRUE(metrics.restStep().has_value());
+    EXPECT_LT(*metrics.restStep(), 150);  // at rest within 2.5 s of the drop
 }
 
 TEST(AfBenchScene, ExactSolverDropsTheRagdollToRestWithTightJoints) {
@@ -94,7 +98,7 @@ TEST(AfBenchScene, ExactSolverDropsTheRagdollToRestWithTightJoints) {
 TEST(AfBenchScene, TreeSolverDropsTheRagdollToRestWithTightJointsMostlyOnTheSparsePath) {
     const Drop run = dropTheRagdoll(af::SolverKind::Tree);
     expectTightJointsAndRest(run);
-    EXPECT_LE(run.sparseFallbacks, 12);
+    EXPECT_LE(run.sparseFallbacks, 2);
 }
 
 // Sixteen ragdolls landing side by side (scene grid4): where a projection pushes bodies out of
@@ -113,8 +117,9 @@ TEST(AfBenchScene, SixteenRagdollsLandWithoutAProjectionPushingABodyIntoTheFloor
         metrics.addStep(states, 0, world.maxPenetration());
     }
     const af::WorldSettings& settings = world.settings();
+    std::printf("ground pen %.6g m, joint err %.3g m\n", metrics.groundPenMax(), metrics.jointErrMax());
     EXPECT_LT(metrics.groundPenMax(), settings.contact.slop * 1.02);  // the slop and the projection's tolerance
-    EXPECT_LT(metrics.jointErrMax(), 1e-6);
+    EXPECT_LT(metrics.jointErrMax(), 1e-9);  // m; measured 1.3e-10
     EXPECT_EQ(world.solverFailures(), 0);
 }
 
