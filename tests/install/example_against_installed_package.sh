@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The README's C++ example, built as a user builds it: the library installed into a fresh prefix,
-# examples/ configured as a separate project that finds it with find_package(af), then run on the
-# source tree's sample data. Fails unless the ragdoll rests with its joints closed and every joint
+# The README's C++ example (checked to be the same text as examples/drop_ragdoll.cpp), built as a
+# user builds it: the library installed into a fresh prefix, examples/ configured as a separate
+# project that finds it with find_package(af), then run on the source tree's sample data. Fails unless the ragdoll rests with its joints closed and every joint
 # of its skeleton is reported above the floor.
 # Usage: example_against_installed_package.sh BUILD_DIR SOURCE_DIR WORK_DIR CXX_COMPILER
 set -euo pipefail
@@ -9,6 +9,13 @@ build=$1 source=$2 work=$3 cxx=$4
 
 rm -rf "$work"
 mkdir -p "$work"
+
+# The README shows this program in full; the two must not drift apart.
+awk '/^```cpp$/ {inside = 1; next} /^```$/ {inside = 0} inside' "$source/README.md" > "$work/readme_example.cpp"
+if ! diff -u "$source/examples/drop_ragdoll.cpp" "$work/readme_example.cpp"; then
+    echo "README.md's C++ example differs from examples/drop_ragdoll.cpp" >&2
+    exit 1
+fi
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 cmake -S "$source/examples" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" \
     -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
