@@ -1,10 +1,9 @@
 #include "sim_bake.h"
 
+#include "af/text/atomic_write.h"
 #include "af/text/md5_writer.h"
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 
 namespace af::sim {
@@ -39,15 +38,8 @@ void Baker::write(const std::string& path) const {
     const int frameRate = static_cast<int>(std::lround(1 / scene_.world.settings().timeStep));
     const Md5Anim anim = makeMd5Anim(figure.afPose.names, figure.afPose.parents, frames_, bounds_, frameRate,
                                      "af-sim: " + scene_.description);
-    const std::string text = writeMd5Anim(anim);
-    const std::string temporary = path + ".tmp";
-    {
-        std::ofstream out(temporary, std::ios::binary);
-        if (!out || !(out << text) || !out.flush()) throw SceneError("cannot write " + temporary);
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) throw SceneError("cannot rename " + temporary + " to " + path + ": " + error.message());
+    if (const WriteResult written = writeFileAtomically(path, writeMd5Anim(anim)); !written.ok())
+        throw SceneError(written.error);
 }
 
 }  // namespace af::sim

@@ -6,7 +6,9 @@
 
 #include "af/geometry/math.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace af {
@@ -90,6 +92,53 @@ TEST(Angles, StraightDownUsesDoomsGimbalLockRule) {
     EXPECT_NEAR(back[0], 90, 1e-6);
     EXPECT_NEAR(back[2], 0, 1e-12);
     EXPECT_LE((rotationFromAngles(back[0], back[1], back[2]) - r).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+}  // namespace
+}  // namespace af
+
+namespace af {
+namespace {
+
+// The angle in degrees of the rotation between a and b (‖a − b‖_F = 2√2 sin(θ/2)).
+Real rotationBetweenDeg(const Mat3& a, const Mat3& b) {
+    return 2 * std::asin(std::min<Real>((a - b).norm() / (2 * std::sqrt(Real(2))), 1)) / kDeg;
+}
+
+TEST(Angles, PreciseAnglesAreDoomsAwayFromGimbalLock) {
+    for (Real pitch : {-80.0, -30.0, 0.0, 45.0, 89.0})
+        for (Real yaw : {-170.0, -90.0, 0.0, 60.0, 179.0})
+            for (Real roll : {-120.0, 0.0, 33.0}) {
+                const Mat3 r = rotationFromAngles(pitch, yaw, roll);
+                EXPECT_LE((anglesFromRotationPrecise(r) - anglesFromRotation(r)).cwiseAbs().maxCoeff(), 1e-9);
+            }
+}
+
+// Within 0.056° of pitch ±90° Doom's reading puts the whole turn into yaw and drops roll, which
+// moves the rebuilt rotation by up to cos(pitch) × 2 sin(roll / 2) rad: 0.11° at the edge, roll
+// 180°. The precise angles rebuild it to rounding there (measured worst 2.0e-12°, at 1e-12° from the
+// lock, where they too put the turn into yaw), and at the
+// lock itself keep Doom's choice of roll 0.
+TEST(Angles, PreciseAnglesRebuildTheRotationNearGimbalLock) {
+    Real worstDoom = 0, worstPrecise = 0;
+    for (Real pitch : {90.0, -90.0})
+        for (Real away : {0.0, 1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 0.01, 0.05})
+            for (Real yaw : {-180.0, -179.99999, 0.0, 30.0, 180.0})
+                for (Real roll : {-180.0, -90.0, 0.0, 20.0, 179.0}) {
+                    const Mat3 r = rotationFromAngles(pitch - std::copysign(away, pitch), yaw, roll);
+                    const Vec3 doom = anglesFromRotation(r), precise = anglesFromRotationPrecise(r);
+                    worstDoom = std::max(worstDoom, rotationBetweenDeg(rotationFromAngles(doom[0], doom[1], doom[2]), r));
+                    worstPrecise = std::max(worstPrecise,
+                                            rotationBetweenDeg(rotationFromAngles(precise[0], precise[1], precise[2]), r));
+                    EXPECT_LE(std::abs(precise[0]), 90.0);
+                }
+    EXPECT_LE(worstPrecise, 1e-9);
+    std::printf("angles near gimbal lock: worst rebuilt rotation error Doom %.3g deg, precise %.3g deg\n", worstDoom, worstPrecise);
+    EXPECT_GE(worstDoom, 0.05);  // what the precise reading is for
+    const Vec3 locked = anglesFromRotationPrecise(rotationFromAngles(90, 30, 20));
+    EXPECT_NEAR(locked[0], 90, 1e-12);
+    EXPECT_NEAR(locked[1], 10, 1e-9);
+    EXPECT_NEAR(locked[2], 0, 1e-9);
 }
 
 }  // namespace

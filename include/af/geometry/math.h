@@ -40,4 +40,12 @@ Mat3 rotationFromAngles(Real pitchDeg, Real yawDeg, Real rollDeg);
 /// them (docs/conventions.md §0.2), including its choice near gimbal lock (yaw from the left axis, roll 0).
 Vec3 anglesFromRotation(const Mat3& rotation);
 
+/// (pitch, yaw, roll) in degrees from which rotationFromAngles rebuilds `rotation` to rounding,
+/// for writing orientations into files. Away from gimbal lock these are anglesFromRotation's
+/// angles (to rounding). Near it Doom's reading drops roll while cos(pitch) is still up to
+/// 8192 × FLT_EPSILON, which turns the rebuilt rotation by up to about 0.1°; here yaw keeps
+/// coming from the forward axis down to a cosine of 1e-12, and roll is read from what pitch and
+/// yaw leave, so it absorbs their rounding. Pitch in [−90°, 90°], yaw and roll in [−180°, 180°].
+Vec3 anglesFromRotationPrecise(const Mat3& rotation);
+
 }  // namespace af
