@@ -80,7 +80,7 @@ int checkFigure(const Options& options) {
     diagnostics.insert(diagnostics.end(), resources.diagnostics.begin(), resources.diagnostics.end());
     std::optional<af::FigureResult> built;
     if (resources.ok()) {
-        built = af::buildFigure(resources.figure->decl, af::afPoseOf(resources), resources.figure->file);
+        built = af::buildFigure(resources);
         diagnostics.insert(diagnostics.end(), built->diagnostics.begin(), built->diagnostics.end());
     }
     const af::Figure* figure = built && built->ok() ? &*built->figure : nullptr;

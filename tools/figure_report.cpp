@@ -47,15 +47,6 @@ std::string limitText(const FigureConstraint& c) {
 
 }  // namespace
 
-Skeleton afPoseOf(const AFResources& resources) {
-    Vec3 offset = Vec3::Zero();
-    if (resources.model && resources.model->offset) {
-        const Real3& o = *resources.model->offset;
-        offset = Vec3(o[0], o[1], o[2]);
-    }
-    return skeletonFromMd5Anim(*resources.afPose.anim, 0, offset);
-}
-
 std::string figureReportText(const Figure& f, const AFResources& r) {
     std::string out = "figure \"" + f.name + "\" from " + r.figure->file + "\n";
     out += "skeleton " + r.mesh.path + ", af_pose " + r.afPose.path + " (" + std::to_string(f.afPose.size()) +

@@ -11,9 +11,6 @@
 
 namespace af {
 
-// The af_pose skeleton of resolved resources (frame 0, with the model's offset).
-Skeleton afPoseOf(const AFResources& resources);
-
 std::string figureReportText(const Figure& figure, const AFResources& resources);
 
 // `figure` may be null when it could not be built; the diagnostics say why.

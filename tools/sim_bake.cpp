@@ -11,11 +11,10 @@ namespace af::sim {
 Baker::Baker(const Scene& scene, int figure) : scene_(scene), figure_(figure) {}
 
 void Baker::addFrame(const World& world) {
-    const Figure& figure = scene_.figures[static_cast<std::size_t>(figure_)];
-    const World::FigureRange range = world.figures()[static_cast<std::size_t>(figure_)];
-    const std::vector<RigidPose> all = world.bodyPoses();
-    const std::vector<RigidPose> poses(all.begin() + range.firstBody, all.begin() + range.firstBody + range.bodyCount);
-    const Skeleton skeleton = poseSkeleton(figure, poses);
+    const FigureId id = scene_.figures[static_cast<std::size_t>(figure_)];
+    const Figure& figure = world.definition(id);
+    const std::vector<RigidPose> poses = world.bodyPoses(id);
+    const Skeleton skeleton = world.skeleton(id);
     std::vector<Md5JointPose> frame;
     for (std::size_t j = 0; j < skeleton.size(); ++j) {
         const JointTransform local = skeleton.local(j);
@@ -34,7 +33,7 @@ void Baker::addFrame(const World& world) {
 
 void Baker::write(const std::string& path) const {
     if (frames_.empty()) throw SceneError("nothing to bake into " + path + ": the run took no step");
-    const Figure& figure = scene_.figures[static_cast<std::size_t>(figure_)];
+    const Figure& figure = scene_.world.definition(scene_.figures[static_cast<std::size_t>(figure_)]);
     const int frameRate = static_cast<int>(std::lround(1 / scene_.world.settings().timeStep));
     const Md5Anim anim = makeMd5Anim(figure.afPose.names, figure.afPose.parents, frames_, bounds_, frameRate,
                                      "af-sim: " + scene_.description);

@@ -20,20 +20,17 @@ std::string general(Real value) {
 
 Real microsecondsPerStep(const RunResult& r) { return r.steps > 0 ? 1e6 * r.wallSeconds / r.steps : 0; }
 
-// The figure body behind world body i, in the order the scene added them.
+// The figure body behind world body i.
 const FigureBody& figureBody(const Scene& scene, std::size_t worldBody) {
-    for (std::size_t f = 0; f < scene.figures.size(); ++f) {
-        const World::FigureRange& r = scene.world.figures()[f];
-        if (static_cast<int>(worldBody) < r.firstBody + r.bodyCount)
-            return scene.figures[f].bodies[worldBody - static_cast<std::size_t>(r.firstBody)];
-    }
-    return scene.figures.back().bodies.back();
+    const FigureId id = scene.world.figureOf(static_cast<int>(worldBody));
+    const int first = scene.world.range(id).firstBody;
+    return scene.world.definition(id).bodies[worldBody - static_cast<std::size_t>(first)];
 }
 
 std::string bodyName(const Scene& scene, std::size_t worldBody) {
     const std::string& name = figureBody(scene, worldBody).name;
     if (scene.figures.size() == 1) return name;
-    return name + "#" + std::to_string(scene.world.figureOf(static_cast<int>(worldBody)));
+    return name + "#" + std::to_string(scene.world.figureOf(static_cast<int>(worldBody)).value);
 }
 
 }  // namespace
@@ -72,7 +69,7 @@ nlohmann::ordered_json summaryJson(const Scene& scene, const RunResult& r) {
     for (std::size_t i = 0; i < scene.world.bodies().size(); ++i) {
         const RigidBody& b = scene.world.bodies()[i];
         bodies.push_back({{"name", bodyName(scene, i)},
-                          {"figure", scene.world.figureOf(static_cast<int>(i))},
+                          {"figure", scene.world.figureOf(static_cast<int>(i)).value},
                           {"mass", b.mass()},
                           {"position", {b.position.x(), b.position.y(), b.position.z()}}});
     }

@@ -52,22 +52,23 @@ Real groundHeight(const Scene& scene, Real x, Real y) {
     return ground;
 }
 
-Real lowestPoint(const Figure& figure) {
+// The lowest and highest points of `figure` placed by `placement`.
+Real lowestPoint(const Figure& figure, const RigidPose& placement) {
     Real lowest = std::numeric_limits<Real>::infinity();
     for (const FigureBody& b : figure.bodies)
-        for (const Vec3& v : b.shape.vertices) lowest = std::min(lowest, b.pose.apply(v).z());
+        for (const Vec3& v : b.shape.vertices) lowest = std::min(lowest, (placement * b.pose).apply(v).z());
     return lowest;
 }
 
-Real highestPoint(const Figure& figure) {
+Real highestPoint(const Figure& figure, const RigidPose& placement) {
     Real highest = -std::numeric_limits<Real>::infinity();
     for (const FigureBody& b : figure.bodies)
-        for (const Vec3& v : b.shape.vertices) highest = std::max(highest, b.pose.apply(v).z());
+        for (const Vec3& v : b.shape.vertices) highest = std::max(highest, (placement * b.pose).apply(v).z());
     return highest;
 }
 
 // A rigid push: the same linear and angular velocity for every body, about the figure's centre.
-void push(World& world, int figure, unsigned seed) {
+void push(World& world, FigureId figure, unsigned seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<Real> speed(-60, 60), spin(-1.5, 1.5);
     // Drawn one statement at a time, last component first: as arguments of one call the draws
@@ -77,20 +78,16 @@ void push(World& world, int figure, unsigned seed) {
     const Real wz = spin(rng), wy = spin(rng), wx = spin(rng);
     const Vec3 v(vx, vy, 0);
     const Vec3 w(wx, wy, wz);
-    const World::FigureRange r = world.figures()[static_cast<std::size_t>(figure)];
+    const int bodies = world.range(figure).bodyCount;
     Vec3 centre = Vec3::Zero();
     Real mass = 0;
-    for (int i = r.firstBody; i < r.firstBody + r.bodyCount; ++i) {
-        const RigidBody& b = world.bodies()[static_cast<std::size_t>(i)];
+    for (int i = 0; i < bodies; ++i) {
+        const RigidBody& b = world.body({figure, i});
         centre += b.mass() * b.position;
         mass += b.mass();
     }
     centre /= mass;
-    for (int i = r.firstBody; i < r.firstBody + r.bodyCount; ++i) {
-        RigidBody& b = world.bodies()[static_cast<std::size_t>(i)];
-        b.linearVelocity = v + w.cross(b.position - centre);
-        b.angularVelocity = w;
-    }
+    for (int i = 0; i < bodies; ++i) world.setVelocity({figure, i}, v + w.cross(world.body({figure, i}).position - centre), w);
 }
 
 }  // namespace
@@ -101,9 +98,11 @@ Scene buildScene(const SceneOptions& options) {
     const AFResources resources =
         options.figure.empty() ? index.resolveAFEntity(options.entity) : index.resolveFigure(options.figure);
     if (!resources.ok()) throw SceneError(resources.formatDiagnostics());
-    const Skeleton afPose = afPoseOf(resources);
+    FigureResult built = buildFigure(resources);
+    if (!built.ok()) throw SceneError(built.formatDiagnostics());
 
-    Scene scene{World(options.world), {}, {}, {}, {}};
+    Scene scene{World(options.world), std::make_shared<const Figure>(std::move(*built.figure)), {}, {}, {}, {}};
+    const Figure& definition = *scene.definition;
     if (options.map.empty()) {
         scene.world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
         scene.floorZ = 0;
@@ -115,15 +114,11 @@ Scene buildScene(const SceneOptions& options) {
         RigidPose placement;
         placement.rotation = Eigen::AngleAxis<Real>(i * 0.5 * std::numbers::pi_v<Real>, Vec3::UnitZ()).toRotationMatrix() *
                              rotationFromAngles(kTiltDegrees, 0, 0);
-        FigureResult built = buildFigure(resources.figure->decl, afPose, resources.figure->file, placement);
-        if (!built.ok()) throw SceneError(built.formatDiagnostics());
-        placement.position.z() = bottom - lowestPoint(*built.figure);
-        built = buildFigure(resources.figure->decl, afPose, resources.figure->file, placement);
-        const Figure& figure = *built.figure;
-        bottom = highestPoint(figure) + kPileSpacing;
-        const int number = scene.world.addFigure(figure);
-        if (options.seed) push(scene.world, number, *options.seed + static_cast<unsigned>(i));
-        scene.figures.push_back(figure);
+        placement.position.z() = bottom - lowestPoint(definition, placement);
+        bottom = highestPoint(definition, placement) + kPileSpacing;
+        const FigureId id = scene.world.spawn(scene.definition, placement);
+        if (options.seed) push(scene.world, id, *options.seed + static_cast<unsigned>(i));
+        scene.figures.push_back(id);
     }
     const std::string what = options.figure.empty() ? "entity " + options.entity : "figure " + options.figure;
     scene.description = what + (options.count > 1 ? " x" + std::to_string(options.count) : "") + " on " +

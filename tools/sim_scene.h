@@ -6,6 +6,7 @@
 #include "af/figure/figure.h"
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -31,7 +32,8 @@ struct SceneOptions {
 
 struct Scene {
     World world;
-    std::vector<Figure> figures;  // as spawned; figure i is the world's figure i
+    std::shared_ptr<const Figure> definition;  // built once, in model space
+    std::vector<FigureId> figures;              // its instances, in the order dropped
     std::vector<Polytope> statics;  // world space: the map's brushes
     std::optional<Real> floorZ;  // the infinite floor, when there is no map
     std::string description;     // what was loaded, for the summary

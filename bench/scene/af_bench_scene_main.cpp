@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
         {"exact", af::SolverKind::Exact}, {"tree", af::SolverKind::Tree}, {"pgs", af::SolverKind::Pgs}};
     const bool sleeping = sleep == "on";
     af::World world = benchscene::buildAfWorld(scene, solvers.at(solver), sleeping);
-    const int ragdolls = static_cast<int>(world.figures().size());
+    const int ragdolls = static_cast<int>(world.figureIds().size());
     benchscene::RunMetrics metrics(ragdolls);
     std::vector<benchscene::BodyState> states;
     benchscene::readStates(world, states);

@@ -111,13 +111,10 @@ af::World buildAfWorld(std::string_view scene, af::SolverKind solver, bool comeT
     af::World world(afWorldSettings(solver, comeToRest));
     world.collision().addPlane(af::Plane{af::Vec3::UnitZ(), 0});
     for (const Placement& pl : placements) {
-        const int figure = world.addFigure(afRagdoll(pl));
-        const int first = world.figures()[static_cast<std::size_t>(figure)].firstBody;
+        const af::FigureId figure = world.addFigure(afRagdoll(pl));
         for (int i = 0; i < kBodiesPerRagdoll; ++i) {
             const BodyState s = placeBody(pl, i);
-            af::RigidBody& b = world.bodies()[static_cast<std::size_t>(first + i)];
-            b.linearVelocity = s.v;
-            b.angularVelocity = s.w;
+            world.setVelocity({figure, i}, s.v, s.w);
         }
     }
     return world;

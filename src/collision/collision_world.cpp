@@ -51,6 +51,19 @@ int CollisionWorld::addBody(const Polytope& shape, const CollisionFilter& filter
     return static_cast<int>(bodies_.size()) - 1;
 }
 
+void CollisionWorld::removeBodies(int first, int count) {
+    const auto at = bodies_.begin() + first;
+    bodies_.erase(at, at + count);
+    for (Body& body : bodies_) {
+        std::vector<int>& with = body.excludedWith;
+        std::erase_if(with, [&](int b) { return b >= first && b < first + count; });
+        for (int& b : with)
+            if (b >= first + count) b -= count;
+    }
+    broadphase_ = SweepAndPrune{};  // its order names bodies by index
+    ++version_;
+}
+
 void CollisionWorld::excludePair(int a, int b) {
     auto exclude = [&](int body, int other) {
         std::vector<int>& with = bodies_[static_cast<std::size_t>(body)].excludedWith;

@@ -10,7 +10,12 @@ namespace af {
 
 namespace {
 
-constexpr int kProjectionHalvings = 4;  // see projectPositions
+// See projectPositions. 4 was one too few: af-sim --seed 15 lands with its forearm turning 85 rad/s,
+// SHAKE is refused and the projection starts from 4.4 units of drift; its fourth pass lowered the
+// largest violation at no halving down to 1/16 (3.535 -> 3.549) and the projection gave up with the
+// joints 4.9 units open for a step. A fifth halving (1/32) lowers it (3.479), and the passes
+// after it close the joints (6.5e-11 over the drop).
+constexpr int kProjectionHalvings = 5;
 // Below it a pass's leftover is chord-stepped (see chordStep). The chord's answer differs from the
 // full pass's by about the leftover times the move: from 3e-6 bench single cost 204.7M (against
 // 205.7M from here), but the tree's poses strayed 1e-9 from the dense solve's over a nudged

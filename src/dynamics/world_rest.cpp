@@ -82,6 +82,8 @@ void World::State::testRest(Real dt) {
         RestMonitor& monitor = rest[f];
         if (monitor.atRest() && moving) monitor.wake();
         ready[f] = monitor.update(dt, motion);
+        // A held figure hangs still yet is not resting: the drag sets its velocities every step.
+        if (drag && slotOfId[static_cast<std::size_t>(drag->body.figure.value)] == static_cast<int>(f)) ready[f] = 0;
     }
 
     group.resize(figures.size());
@@ -103,33 +105,16 @@ void World::State::testRest(Real dt) {
     if (changed) refreshAwake();
 }
 
-bool World::figureAtRest(int figure) const { return state_->figureResting[static_cast<std::size_t>(figure)] != 0; }
+bool World::figureAtRest(FigureId figure) const {
+    return state_->figureResting[static_cast<std::size_t>(state_->slot(figure))] != 0;
+}
 
 bool World::atRest() const {
     const State& s = *state_;
     return !s.figures.empty() && std::all_of(s.figureResting.begin(), s.figureResting.end(), [](std::uint8_t r) { return r != 0; });
 }
 
-void World::wakeFigure(int figure) { state_->wake(figure); }
-
-int World::figureOf(int body) const { return state_->bodyFigure[static_cast<std::size_t>(body)]; }
-
-void World::applyImpulse(int body, const Vec3& worldPoint, const Vec3& impulse) {
-    State& s = *state_;
-    if (!(impulse.norm() >= s.settings.impulseThreshold)) return;
-    if (const int f = figureOf(body); f >= 0) s.wake(f);
-    RigidBody& b = s.bodies[static_cast<std::size_t>(body)];
-    b.linearVelocity += b.inverseMass * impulse;
-    b.angularVelocity += b.inverseInertiaWorld() * (worldPoint - b.position).cross(impulse);
-}
-
-void World::addForce(int body, const Vec3& worldPoint, const Vec3& force) {
-    State& s = *state_;
-    if (const int f = figureOf(body); f >= 0) s.wake(f);
-    RigidBody& b = s.bodies[static_cast<std::size_t>(body)];
-    b.force += force;
-    b.torque += (worldPoint - b.position).cross(force);
-}
+void World::wakeFigure(FigureId figure) { state_->wake(state_->slot(figure)); }
 
 void World::removeStatic(int staticShape) {
     State& s = *state_;

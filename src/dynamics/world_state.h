@@ -8,6 +8,8 @@
 #include "warm_start.h"
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
 namespace af {
@@ -16,8 +18,18 @@ struct World::State {
     WorldSettings settings;
     std::vector<RigidBody> bodies;
     std::vector<Joint> joints;
+    // Figures by slot, in spawn order; a removal closes the gap (world_figures.cpp). Ids stay.
     std::vector<FigureRange> figures;
-    RowSource extraRows;
+    std::vector<std::shared_ptr<const Figure>> definitions;  // per slot
+    std::vector<FigureId> ids;                               // per slot
+    std::vector<int> slotOfId;                               // per id ever given: its slot, or -1
+    // Per joint: the slot of the figure it belongs to (-1: none), and whether it is a bind
+    // (World::bind), which follows every figure's own joints.
+    std::vector<int> jointFigure;
+    std::vector<std::uint8_t> jointIsBind;
+    std::optional<Drag> drag;
+    RowSource userRows;   // setContactSource's
+    RowSource extraRows;  // what the islands call: userRows and the drag's rows
     Real time = 0;
     StepReport report;
     int failures = 0;
@@ -86,6 +98,19 @@ struct World::State {
 
     void addBody(const RigidBody& body, const Polytope& shape, const CollisionFilter& filter,
                  const BodyMaterial& material, int figure);
+    FigureId addFigure(const Figure& placed, std::shared_ptr<const Figure> definition);
+    int slot(FigureId figure) const;  // throws std::invalid_argument for a figure not in the world
+    int bodyIndex(BodyRef body) const;  // likewise, and for a body the figure does not have
+    void removeSlot(int slot);
+    // After bodies or joints were removed: the figures' ranges anew, and every cache that names
+    // bodies, joints or contact points by index forgotten (the next step searches and solves
+    // from scratch).
+    void renumber();
+    // Wakes every figure touching a body of `slot` in the last step's contacts.
+    void wakeTouching(int slot);
+    void applyDrag();
+    void writeDragRows(std::span<const RigidBody> all, ConstraintRows& rows) const;
+    void useRowSources();
 
     const std::vector<BodyContact>& found() const {
         return manifoldsOf == ManifoldsOf::Search ? search.manifolds

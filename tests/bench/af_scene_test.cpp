@@ -107,7 +107,7 @@ TEST(AfBenchScene, TreeSolverDropsTheRagdollToRestWithTightJointsMostlyOnTheSpar
 // with the pairs near it, the slop (1.27 mm) at most.
 TEST(AfBenchScene, SixteenRagdollsLandWithoutAProjectionPushingABodyIntoTheFloor) {
     af::World world = buildAfWorld("grid4", af::SolverKind::Tree, false);
-    RunMetrics metrics(static_cast<int>(world.figures().size()));
+    RunMetrics metrics(static_cast<int>(world.figureIds().size()));
     std::vector<BodyState> states;
     readStates(world, states);
     metrics.setInitial(states);

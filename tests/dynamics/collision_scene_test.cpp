@@ -12,7 +12,7 @@ using test::freeBox;
 using test::humanoidAt;
 
 Real lowestPoint(const World& world, int figure) {
-    const World::FigureRange r = world.figures()[static_cast<std::size_t>(figure)];
+    const World::FigureRange r = world.range(FigureId{figure});
     Real lowest = 1e30;
     for (int i = r.firstBody; i < r.firstBody + r.bodyCount; ++i) {
         const RigidBody& b = world.bodies()[static_cast<std::size_t>(i)];
@@ -22,7 +22,7 @@ Real lowestPoint(const World& world, int figure) {
 }
 
 Real centreHeight(const World& world, int figure) {
-    const World::FigureRange r = world.figures()[static_cast<std::size_t>(figure)];
+    const World::FigureRange r = world.range(FigureId{figure});
     Real sum = 0, mass = 0;
     for (int i = r.firstBody; i < r.firstBody + r.bodyCount; ++i) {
         const RigidBody& b = world.bodies()[static_cast<std::size_t>(i)];

@@ -39,10 +39,10 @@ TEST(WorldRest, ImpulseAboveTheThresholdWakesAndOneBelowIsIgnored) {
     ASSERT_GT(stepUntilRest(world, 3), 0);
     const Real threshold = world.settings().impulseThreshold;
     world.applyImpulse(0, world.bodies()[0].position, Vec3(0.9 * threshold, 0, 0));
-    EXPECT_TRUE(world.figureAtRest(0));
+    EXPECT_TRUE(world.figureAtRest(FigureId{0}));
     EXPECT_EQ(world.bodies()[0].linearVelocity.norm(), 0);
     world.applyImpulse(0, world.bodies()[0].position, Vec3(1.1 * threshold, 0, 0));
-    EXPECT_FALSE(world.figureAtRest(0));
+    EXPECT_FALSE(world.figureAtRest(FigureId{0}));
     const Real mass = world.bodies()[0].mass();
     EXPECT_NEAR(world.bodies()[0].linearVelocity.x(), 1.1 * threshold / mass, 1e-9);
     world.step();
@@ -89,7 +89,7 @@ TEST(WorldRest, PileOfHumanoidsSleepsAsOneIslandAndWakesWhenOneIsPushed) {
         largeIslandSteps += world.lastStep().largeIslands > 0 ? 1 : 0;
         worstJoint = std::max(worstJoint, world.maxJointError());
         for (int f = 0; f < 4; ++f)
-            if (figureRest[static_cast<std::size_t>(f)] == 0 && world.figureAtRest(f))
+            if (figureRest[static_cast<std::size_t>(f)] == 0 && world.figureAtRest(FigureId{f}))
                 figureRest[static_cast<std::size_t>(f)] = world.time();
         if (world.atRest()) rest = world.time();
     }
@@ -110,12 +110,12 @@ TEST(WorldRest, PileOfHumanoidsSleepsAsOneIslandAndWakesWhenOneIsPushed) {
     }
 
     // Push the top figure hard: it wakes, and so does every figure it touches when it moves.
-    const World::FigureRange top = world.figures()[3];
+    const World::FigureRange top = world.range(FigureId{3});
     world.applyImpulse(top.firstBody, world.bodies()[static_cast<std::size_t>(top.firstBody)].position, Vec3(0, 0, -5000));
-    EXPECT_FALSE(world.figureAtRest(3));
+    EXPECT_FALSE(world.figureAtRest(FigureId{3}));
     world.step();
     int awake = 0;
-    for (int f = 0; f < 4; ++f) awake += world.figureAtRest(f) ? 0 : 1;
+    for (int f = 0; f < 4; ++f) awake += world.figureAtRest(FigureId{f}) ? 0 : 1;
     EXPECT_GE(awake, 2) << "the pushed figure must wake the figures it presses on";
 }
 

@@ -58,6 +58,9 @@ public:
     // Returns the body's index; bodies are numbered in the order they are added, as the caller's
     // rigid bodies are.
     int addBody(const Polytope& shape, const CollisionFilter& filter);
+    // Removes bodies first … first + count − 1; the bodies after them move down by count, as the
+    // caller's rigid bodies do.
+    void removeBodies(int first, int count);
     // Bodies joined by a (non-spring) constraint.
     void excludePair(int a, int b);
     // Static shapes; both kinds share one numbering (BodyContact::staticShape).

@@ -44,6 +44,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -113,6 +114,30 @@ struct StepReport {
 // Appends rows for the current step (hand-made contacts in tests, drags in the console).
 using RowSource = std::function<void(std::span<const RigidBody>, ConstraintRows&)>;
 
+// A figure in a world. Ids are never reused: an id names the same figure while others are spawned
+// and removed, and a removed figure's id is refused (std::invalid_argument) by every call.
+struct FigureId {
+    int value = -1;
+    friend auto operator<=>(FigureId, FigureId) = default;
+};
+
+// A body of a figure: the figure and the body's index in its definition.
+struct BodyRef {
+    FigureId figure;
+    int body = 0;
+};
+
+// Doom's mouse drag (docs/doom-physics.md §5.2): every step the grabbed point's velocity is made
+// `damping` · its velocity + (1 − damping) · the velocity that closes its gap to `target` in one
+// step, by three rows solved with the figure (so that a hand carrying a whole figure still gets
+// there; Doom sets the body's velocities instead, and the figure's weight drags the hand down).
+struct Drag {
+    BodyRef body;
+    Vec3 localPoint = Vec3::Zero();  // the grabbed point, body frame (relative to the centre of mass)
+    Vec3 target = Vec3::Zero();      // world
+    Real damping = 0.5;              // g_dragDamping, in [0, 1)
+};
+
 class World {
 public:
     explicit World(const WorldSettings& settings = {});
@@ -123,13 +148,47 @@ public:
     World(World&&) noexcept;
     World& operator=(World&&) noexcept;
 
-    // Adds a figure's bodies (with their shapes and collision filters) and joints; returns the
-    // figure's number. Its bodies follow those already in the world.
-    int addFigure(const Figure& figure);
-    struct FigureRange {
-        int firstBody = 0, bodyCount = 0, firstJoint = 0, jointCount = 0;
-    };
-    const std::vector<FigureRange>& figures() const;
+    // Spawns an instance of `definition` (a figure built once, usually in model space, and shared by
+    // every instance) moved by `placement` (docs/figures.md §3.9), at rest-free start: awake, with
+    // zero velocities. Its bodies follow those already in the world.
+    FigureId spawn(std::shared_ptr<const Figure> definition, const RigidPose& placement = {});
+    // Doom's StartFromCurrentPose (docs/figures.md §3.9): the bodies placed where the skeleton
+    // `pose` (world space, the definition's joints) puts them, and, given the pose `dt` seconds
+    // before, the velocities that carry each body from there to here.
+    FigureId spawnFromPose(std::shared_ptr<const Figure> definition, const Skeleton& pose,
+                           const Skeleton* earlierPose = nullptr, Real dt = 0);
+    // A copy of `figure`, as placed.
+    FigureId addFigure(const Figure& figure);
+    // Removes a figure, its binds and its drag; what touched it wakes.
+    void remove(FigureId figure);
+    bool contains(FigureId figure) const;
+    std::vector<FigureId> figureIds() const;  // the figures in the world, in spawn order
+    const Figure& definition(FigureId figure) const;
+
+    // Poses and velocities, per figure; body i is the definition's body i.
+    std::vector<RigidPose> bodyPoses(FigureId figure) const;
+    const RigidBody& body(BodyRef body) const;
+    // The skeleton the figure's bodies drive, world space (poseSkeleton).
+    Skeleton skeleton(FigureId figure) const;
+    // Puts every body of the figure at the given pose, at rest-free start: zero velocities, awake,
+    // and wakes what touched it. Non-finite poses are refused (std::invalid_argument).
+    void setPose(FigureId figure, std::span<const RigidPose> bodyPoses);
+    void setVelocity(BodyRef body, const Vec3& linear, const Vec3& angular);
+
+    // An impulse (mass units · units/s) at a world point of a body: changes its velocities now,
+    // and wakes its figure; ignored when smaller than impulseThreshold.
+    void applyImpulse(BodyRef body, const Vec3& worldPoint, const Vec3& impulse);
+    // A force (mass units · units/s²) at a world point, for the next step only; wakes the figure.
+    void addForce(BodyRef body, const Vec3& worldPoint, const Vec3& force);
+    // The drag, if any (Drag above); starting or moving it wakes the figure.
+    void setDrag(const Drag& drag);
+    void clearDrag();
+    const std::optional<Drag>& drag() const;
+    // Doom's bindRagdoll: a ball-and-socket joint holding a body's point at `worldAnchor` (where it
+    // is now, or the body is pulled there); unbind removes every bind of the figure.
+    void bind(BodyRef body, const Vec3& worldAnchor);
+    void unbind(FigureId figure);
+    int bindCount(FigureId figure) const;
 
     // The static world (planes, brushes) and the collision rules live here.
     CollisionWorld& collision();
@@ -139,16 +198,9 @@ public:
     void setContactSource(RowSource source);
 
     // Rest and wake (see the top of this file).
-    bool figureAtRest(int figure) const;
+    bool figureAtRest(FigureId figure) const;
     bool atRest() const;  // every figure at rest (false for a world without figures)
-    void wakeFigure(int figure);
-    // An impulse (mass units · units/s) at a world point of a body: changes its velocities now,
-    // and wakes its figure; ignored when smaller than impulseThreshold.
-    void applyImpulse(int body, const Vec3& worldPoint, const Vec3& impulse);
-    // A force (mass units · units/s²) at a world point, for the next step only; wakes the figure.
-    void addForce(int body, const Vec3& worldPoint, const Vec3& force);
-    // The figure a body belongs to, or -1.
-    int figureOf(int body) const;
+    void wakeFigure(FigureId figure);
     // Removes a static shape of the collision world and wakes every figure (what lay on it falls).
     void removeStatic(int staticShape);
 
@@ -157,9 +209,21 @@ public:
     // Deepest penetration of the last step's contact points at the current poses (0 if none).
     Real maxPenetration() const;
 
+    // Every body of the world in one array (figures in spawn order), and the joints; a body's
+    // index changes when a figure before it is removed.
     std::vector<RigidBody>& bodies();
     const std::vector<RigidBody>& bodies() const;
     const std::vector<Joint>& joints() const;
+    struct FigureRange {
+        int firstBody = 0, bodyCount = 0, firstJoint = 0, jointCount = 0;
+    };
+    FigureRange range(FigureId figure) const;
+    // The figure a body of bodies() belongs to (value -1 for a body of no figure).
+    FigureId figureOf(int body) const;
+    // Body-index versions of the calls above.
+    void applyImpulse(int body, const Vec3& worldPoint, const Vec3& impulse);
+    void addForce(int body, const Vec3& worldPoint, const Vec3& force);
+
     const WorldSettings& settings() const;
     Real time() const;
     const StepReport& lastStep() const;

@@ -107,6 +107,19 @@ struct FigureResult {
 FigureResult buildFigure(const DeclAF& decl, const Skeleton& afPose, const std::string& afFile,
                          const RigidPose& placement = {});
 
+struct AFResources;
+// The af_pose skeleton of resolved resources (docs/formats.md §2.3): frame 0 of the model's
+// `anim af_pose`, with the model's `offset` added to the root.
+Skeleton afPoseSkeleton(const AFResources& resources);
+// The figure of resolved resources (ResourceIndex::resolveAFEntity or resolveFigure, which must
+// be ok()) on their af_pose, in model space: the definition every instance of it shares.
+FigureResult buildFigure(const AFResources& resources);
+
+// The figure moved rigidly by `placement`, after its own: body poses, constraint vectors, and
+// `placement` itself (placement * figure.placement). Building a figure at the identity and placing
+// it gives the figure built at that placement, to rounding.
+Figure placeFigure(const Figure& figure, const RigidPose& placement);
+
 // The groups of bodies joined by constraints (to the world or not), each in body order; a
 // well-formed figure is one tree. Groups are ordered by their first body.
 std::vector<std::vector<int>> bodyTrees(const Figure& figure);
