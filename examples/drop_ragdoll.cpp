@@ -11,6 +11,7 @@
 #include <af/text/resource_index.h>
 
 #include <cstdio>
+#include <memory>
 
 int main(int argc, char** argv) {
     if (argc < 2) {
@@ -27,25 +28,24 @@ int main(int argc, char** argv) {
         return 1;
     }
 
-    // The figure is built on the model's af_pose skeleton and placed 40 units up, lying down.
-    const af::Skeleton afPose = af::skeletonFromMd5Anim(*found.afPose.anim, 0);
-    af::RigidPose placement;
-    placement.position = af::Vec3(0, 0, 40);
-    placement.rotation = af::rotationFromAngles(80, 0, 0);  // pitch, yaw, roll in degrees
-    const af::FigureResult built = af::buildFigure(found.figure->decl, afPose, found.figure->file, placement);
+    // The figure is built once, in model space, on the model's af_pose skeleton; every instance
+    // of it shares that definition.
+    af::FigureResult built = af::buildFigure(found);
     if (!built.ok()) {
         std::fprintf(stderr, "%s", built.formatDiagnostics().c_str());
         return 1;
     }
+    const auto ragdoll = std::make_shared<const af::Figure>(std::move(*built.figure));
 
-    // A world with a floor at z = 0; Doom's gravity and 60 Hz steps are the defaults.
+    // A world with a floor at z = 0; Doom's gravity and 60 Hz steps are the defaults. The ragdoll
+    // is spawned 40 units up, lying down (pitch, yaw, roll in degrees).
     af::World world;
     world.collision().addPlane(af::Plane{af::Vec3::UnitZ(), 0});
-    world.addFigure(*built.figure);
+    const af::FigureId id = world.spawn(ragdoll, {af::Vec3(0, 0, 40), af::rotationFromAngles(80, 0, 0)});
     while (!world.atRest() && world.time() < 10) world.step();
 
     // The bodies drive the skeleton: every joint of the md5 skeleton, in world space.
-    const af::Skeleton pose = af::poseSkeleton(*built.figure, world.bodyPoses());
+    const af::Skeleton pose = world.skeleton(id);
     std::printf("%s %s after %.2f s, largest joint error %.1e units\n", entityDef.c_str(),
                 world.atRest() ? "at rest" : "still moving", world.time(), world.maxJointError());
     for (std::size_t j = 0; j < pose.size(); ++j) {
