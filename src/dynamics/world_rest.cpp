@@ -116,6 +116,12 @@ bool World::atRest() const {
 
 void World::wakeFigure(FigureId figure) { state_->wake(state_->slot(figure)); }
 
+void World::putToRest(FigureId figure) {
+    State& s = *state_;
+    s.putToRest(s.slot(figure));
+    s.refreshAwake();
+}
+
 void World::removeStatic(int staticShape) {
     State& s = *state_;
     s.collision.removeStatic(staticShape);

@@ -201,6 +201,9 @@ public:
     bool figureAtRest(FigureId figure) const;
     bool atRest() const;  // every figure at rest (false for a world without figures)
     void wakeFigure(FigureId figure);
+    // Puts a figure to rest where it is (zero velocities), as Doom does to a map's figure with
+    // `nodrop`; anything that touches or pushes it wakes it as usual.
+    void putToRest(FigureId figure);
     // Removes a static shape of the collision world and wakes every figure (what lay on it falls).
     void removeStatic(int staticShape);
 

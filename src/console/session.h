@@ -1,0 +1,37 @@
+#pragma once
+// The ragdoll console's world: a map (or an infinite floor), the AF entities spawned into it, and
+// the commands a modder uses on them, after Doom's (docs/doom-physics.md §5): map, spawn, list,
+// step/run/waitRest (a clock that moves only when told, so a script is deterministic), drag,
+// bindRagdoll/unbindRagdoll, saveRagdolls/saveSelected, deleteSelected, killRagdolls,
+// reloadDecls. A user of the library's public API like any engine; no terminal code.
+
+#include "console/command_system.h"
+
+#include "af/dynamics/world.h"
+#include "af/text/atomic_write.h"
+
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+namespace af::console {
+
+class Session {
+public:
+    // Mod folders lowest priority first; registers its commands and cvars into `console`.
+    Session(std::vector<std::filesystem::path> roots, CommandSystem& console);
+    ~Session();
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+
+    const World& world() const;
+    // Every later write of a map goes through this hook (tests: a save cut short).
+    void setWriteFaultHook(WriteFaultHook hook);
+
+    struct State;
+
+private:
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace af::console

@@ -1,0 +1,58 @@
+#pragma once
+// Session's state, shared by session.cpp (the scene: maps, entities, saving) and
+// session_commands.cpp (the commands that drive it).
+
+#include "console/session.h"
+
+#include "af/figure/figure.h"
+#include "af/text/map_file.h"
+#include "af/text/resource_index.h"
+
+#include <map>
+#include <optional>
+#include <string>
+
+namespace af::console {
+
+// An AF entity: a figure instance with the name and keys it was spawned with.
+struct Entity {
+    std::string name;
+    std::string entityDef;
+    FigureId figure;
+    RigidPose placement;  // where it was spawned (reloadDecls respawns it there)
+    std::string declText;  // its .af decl as the canonical writer spells it, to see edits
+};
+
+struct Session::State {
+    std::vector<std::filesystem::path> roots;
+    std::unique_ptr<ResourceIndex> index;
+    World world;
+    std::vector<Polytope> statics;  // world space, for placing spawns
+    std::optional<Real> floorZ;     // the infinite floor, when the map has no brushes
+    std::optional<MapFile> map;
+    std::filesystem::path mapPath;
+    std::vector<Entity> entities;
+    std::string selected;  // the entity last spawned or dragged (saveSelected, deleteSelected)
+    std::map<std::string, std::shared_ptr<const Figure>> definitions;  // by entityDef, lower case
+    WriteFaultHook writeHook;
+    Real dragDamping = 0.5;
+
+    // Each returns an error message, or nothing when it worked.
+    std::optional<std::string> loadMap(const std::filesystem::path& path, const Output& out);
+    std::optional<std::string> spawn(const std::string& entityDef, const MapKeyValues& keys, const Output& out,
+                                     const MapEntity* saved = nullptr);
+    std::optional<std::string> save(const std::filesystem::path& file, bool selectedOnly, const Output& out);
+    void reload(const Output& out);
+    void remove(const std::string& name);
+
+    Entity* find(std::string_view name);
+    void resetWorld();
+    std::shared_ptr<const Figure> definition(const std::string& entityDef, std::string& error, std::string* declText);
+    Real groundHeight(Real x, Real y) const;
+    std::string unusedName(const std::string& entityDef) const;
+};
+
+// Registers the session's commands and cvars (session_commands.cpp).
+void registerSessionCommands(Session::State& state, CommandSystem& console);
+
+}  // namespace af::console
