@@ -58,6 +58,8 @@ Session::Session(std::vector<std::filesystem::path> roots, CommandSystem& consol
 
 Session::~Session() = default;
 const World& Session::world() const { return state_->world; }
+const std::vector<Polytope>& Session::statics() const { return state_->statics; }
+std::optional<Real> Session::floorZ() const { return state_->floorZ; }
 void Session::setWriteFaultHook(WriteFaultHook hook) { state_->writeHook = std::move(hook); }
 
 void Session::State::resetWorld() {

@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace af::console {
@@ -25,6 +26,9 @@ public:
     Session& operator=(const Session&) = delete;
 
     const World& world() const;
+    // The static world as placed: the map's brushes (world space), or the infinite floor's height.
+    const std::vector<Polytope>& statics() const;
+    std::optional<Real> floorZ() const;
     // Every later write of a map goes through this hook (tests: a save cut short).
     void setWriteFaultHook(WriteFaultHook hook);
 
