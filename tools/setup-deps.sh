@@ -9,6 +9,7 @@ packages=(
     googletest libgtest-dev libgmock-dev libbenchmark-dev
     libcli11-dev nlohmann-json3-dev
     libcairo2-dev libfontconfig-dev
+    libreadline-dev
 )
 
 missing=()
