@@ -11,6 +11,7 @@
 // 2 for bad usage (an unknown option) or when the session cannot be made.
 
 #include "af_console_readline.h"
+#include "console_screenshot.h"
 
 #include "console/command_line.h"
 #include "console/command_system.h"
@@ -137,6 +138,7 @@ int runConsole(const Options& o, const std::vector<CommandText>& plusCommands) {
     std::vector<std::filesystem::path> roots(o.roots.begin(), o.roots.end());
     if (roots.empty()) roots.emplace_back(AF_DATA_DIR);
     af::console::Session session(std::move(roots), console);
+    af::console::addScreenshotCommand(console, session);
     Runner runner(console, o.strict);
 
     if (!o.exec.empty()) {

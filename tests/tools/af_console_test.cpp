@@ -282,3 +282,21 @@ TEST(AfConsole, AtATerminalItPromptsCompletesNamesWithTabAndKeepsHistoryAcrossRu
 }
 
 }  // namespace
+
+namespace {
+
+// `screenshot FILE` writes a PNG of the world, and a write that cannot happen leaves nothing.
+TEST(AfConsole, ScreenshotWritesAPictureOfTheWorld) {
+    const std::filesystem::path picture = scratchDir() / "shot.png";
+    const ConsoleRun run = afConsole("", "spawn ragdoll_humanoid\nwaitRest\nscreenshot \"" + picture.string() + "\"\n");
+    ASSERT_EQ(run.status, 0) << run.err;
+    const std::string png = readAll(picture);
+    ASSERT_GT(png.size(), 1000u);
+    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+    EXPECT_FALSE(std::filesystem::exists(picture.string() + ".partial"));
+    const ConsoleRun bad = afConsole("", "screenshot /no/such/folder/shot.png\n");
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_TRUE(contains(bad.err, "screenshot")) << bad.err;
+}
+
+}  // namespace
