@@ -6,7 +6,7 @@
 // Exact/WarmSame   warm-started from its own answer (the lower bound of a warm step)
 // Exact/WarmNext   warm-started from the previous step's answer, b perturbed by 0.001
 // Pgs/N            N sweeps from zero; PgsWarm/N from the previous step's x
-// Counters: pivots and residual per solve (the natural residual, see af/dynamics/lcp.h).
+// Counters: pivots and residual per solve (the natural residual, see src/dynamics/lcp.h).
 
 #include "lcp_test_problems.h"
 

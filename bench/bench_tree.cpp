@@ -15,7 +15,7 @@
 //                          factorised pose (warm from itself): the part of a solve after factor
 // Counters: rows, auxiliary rows (the LCP's size), pivots per solve, heap allocations per solve.
 
-#include "af/dynamics/tree_solver.h"
+#include "dynamics/tree_solver.h"
 
 #include "allocation_counter.h"
 #include "dynamics/row_system.h"

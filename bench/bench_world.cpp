@@ -19,7 +19,10 @@ af::World shaken(const af::Figure& figure, af::SolverKind solver) {
     af::World world(figure, settings);
     std::mt19937 rng(3);
     std::uniform_real_distribution<af::Real> spin(-6, 6);
-    for (af::RigidBody& b : world.bodies()) b.angularVelocity = af::Vec3(spin(rng), spin(rng), spin(rng));
+    for (int b = 0; b < static_cast<int>(world.bodies().size()); ++b) {
+        const af::Vec3 angular = af::Vec3(spin(rng), spin(rng), spin(rng));
+        world.setVelocity(b, world.bodies()[static_cast<std::size_t>(b)].linearVelocity, angular);
+    }
     return world;
 }
 

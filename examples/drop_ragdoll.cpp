@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     // A world with a floor at z = 0; Doom's gravity and 60 Hz steps are the defaults. The ragdoll
     // is spawned 40 units up, lying down (pitch, yaw, roll in degrees).
     af::World world;
-    world.collision().addPlane(af::Plane{af::Vec3::UnitZ(), 0});
+    world.addStaticPlane(af::Plane{af::Vec3::UnitZ(), 0});
     const af::FigureId id = world.spawn(ragdoll, {af::Vec3(0, 0, 40), af::rotationFromAngles(80, 0, 0)});
     while (!world.atRest() && world.time() < 10) world.step();
 

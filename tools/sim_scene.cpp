@@ -31,7 +31,7 @@ void addMapStatics(const std::filesystem::path& path, Scene& scene) {
         if (!solid.ok())
             throw SceneError(path.string() + ":" + std::to_string(primitive.where.line) + ":" +
                              std::to_string(primitive.where.column) + ": error: " + solid.message);
-        scene.world.collision().addStatic(*solid.polytope);
+        scene.world.addStaticBrush(*solid.polytope);
         scene.statics.push_back(*solid.polytope);
     }
     if (scene.statics.empty()) throw SceneError(path.string() + ": error: the worldspawn has no brushes to stand on");
@@ -104,7 +104,7 @@ Scene buildScene(const SceneOptions& options) {
     Scene scene{World(options.world), std::make_shared<const Figure>(std::move(*built.figure)), {}, {}, {}, {}};
     const Figure& definition = *scene.definition;
     if (options.map.empty()) {
-        scene.world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+        scene.world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
         scene.floorZ = 0;
     } else {
         addMapStatics(options.map, scene);

@@ -109,7 +109,7 @@ af::Figure afRagdoll(const Placement& pl) {
 af::World buildAfWorld(std::string_view scene, af::SolverKind solver, bool comeToRest) {
     const std::vector<Placement> placements = scenePlacements(scene);
     af::World world(afWorldSettings(solver, comeToRest));
-    world.collision().addPlane(af::Plane{af::Vec3::UnitZ(), 0});
+    world.addStaticPlane(af::Plane{af::Vec3::UnitZ(), 0});
     for (const Placement& pl : placements) {
         const af::FigureId figure = world.addFigure(afRagdoll(pl));
         for (int i = 0; i < kBodiesPerRagdoll; ++i) {

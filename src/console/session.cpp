@@ -51,7 +51,7 @@ Session::Session(std::vector<std::filesystem::path> roots, CommandSystem& consol
     state_->roots = std::move(roots);
     state_->index = std::make_unique<ResourceIndex>(state_->roots);
     state_->resetWorld();
-    state_->world.collision().addPlane(Plane{Vec3::UnitZ(), 0});  // until a map is loaded
+    state_->world.addStaticPlane(Plane{Vec3::UnitZ(), 0});  // until a map is loaded
     state_->floorZ = 0;
     registerSessionCommands(*state_, console);
 }
@@ -144,10 +144,10 @@ std::optional<std::string> Session::State::loadMap(const std::filesystem::path& 
     }
     // Everything is checked: from here the old scene goes.
     resetWorld();
-    for (const Polytope& p : brushes) world.collision().addStatic(p);
+    for (const Polytope& p : brushes) world.addStaticBrush(p);
     statics = std::move(brushes);
     if (statics.empty()) {
-        world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+        world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
         floorZ = 0;
     }
     map = std::move(parsed.map);

@@ -1,4 +1,4 @@
-// Contact rows, of a hand-made Contact (contact.h) and of the step's ContactPoints (contact_set.h),
+// Contact rows, of a hand-made Contact (contact_rows.h) and of the step's ContactPoints (contact_set.h),
 // by the same arithmetic. A contact pushes A at p_A and B at p_B: a hand-made Contact's one point
 // is both, a ContactPoint's are its two surface points, which part when the bodies slide or turn
 // on each other after the points were found (by up to a quarter of the contact margin before

@@ -9,8 +9,8 @@
 // collision query.
 
 #include "af/collision/collision_world.h"
-#include "af/dynamics/contact.h"
 #include "af/dynamics/rigid_body.h"
+#include "contact_rows.h"
 
 #include <cstdint>
 #include <optional>

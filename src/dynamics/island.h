@@ -9,15 +9,18 @@
 // position integration, SHAKE, position projection. Its order and reasons are those of
 // af/dynamics/world.h.
 
-#include "af/dynamics/lcp.h"
-#include "af/dynamics/tree_solver.h"
 #include "af/dynamics/world.h"
 #include "contact_set.h"
 #include "joint_errors.h"
+#include "lcp.h"
 #include "row_pgs.h"
+#include "row_source.h"
 #include "row_system.h"
 #include "shake.h"
+#include "solver_counters.h"
+#include "solver_tuning.h"
 #include "sparse_lcp.h"
+#include "tree_solver.h"
 #include "warm_start.h"
 
 #include <cstdint>
@@ -25,13 +28,16 @@
 
 namespace af {
 
-// What every island of a step shares: the settings, the extra row source (called on the world's
-// bodies, see Island::writeRows) and where the islands' reports and warm starts are gathered.
+// What every island of a step shares: the settings and the solvers' tuning, the extra row
+// source (called on the world's bodies, see Island::writeRows) and where the islands' reports,
+// counters and warm starts are gathered.
 struct IslandContext {
     const WorldSettings& settings;
+    const SolverTuning& tuning;
     const RowSource& extraRows;
     std::vector<RigidBody>& worldBodies;
     StepReport& report;
+    SolverCounters& counters;
     const WarmStartCache& velocityWarmStart;  // the previous step's rows, all islands
 };
 

@@ -38,7 +38,7 @@ constexpr Real kChordViolation = 3e-7;
 // and has moved since (SHAKE) most likely projects again: its rows are written at once, and
 // their largest violation is the measured one's bits.
 void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
-    const int passes = context.report.projectionPasses;
+    const int passes = context.counters.projectionPasses;
     bool rowsAtPoses = context.extraRows || (!jointErrorsAtPoses && projectedLastStep_);
     Real violation = 0;
     if (rowsAtPoses) {
@@ -51,7 +51,7 @@ void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
     bool factored = false;  // the tree's factors are those of this projection's last full pass
     for (int pass = 0; pass < context.settings.positionIterations && violation > context.settings.positionTolerance; ++pass) {
         if (factored && violation < kChordViolation && chordStep(violation, context)) {
-            ++context.report.projectionPasses;
+            ++context.counters.projectionPasses;
             continue;
         }
         factored = false;
@@ -60,7 +60,7 @@ void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
             writeRows(context);
         }
         rowsAtPoses = static_cast<bool>(context.extraRows);
-        ++context.report.projectionPasses;
+        ++context.counters.projectionPasses;
         holdFrictionAtZero(rows_, ranges_);
         system_.buildResponses(rows_, bodies_, rowInertia_);
         shiftsOfSolution_ = false;
@@ -68,7 +68,7 @@ void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
             system_.setPositionRhs(rows_);
             std::span<Real> x = system_.solution();
             positionCache_.recall(rowKeys_, system_.states(), x);
-            rowPgs_.solve(rows_, system_, bodies_.size(), x, context.settings.pgs);
+            rowPgs_.solve(rows_, system_, bodies_.size(), x, context.tuning.pgs);
             positionCache_.remember(rowKeys_, system_.states(), x);
         } else if (solvePositionsWithTree(context, violation)) {
             factored = !context.extraRows;
@@ -79,7 +79,7 @@ void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
         }
         if (!moveWhileImproving(violation, context)) break;
     }
-    projectedLastStep_ = context.report.projectionPasses != passes;
+    projectedLastStep_ = context.counters.projectionPasses != passes;
     nearPointsOnly_ = false;
 }
 
@@ -230,7 +230,7 @@ bool Island::solvePositionsWithTree(IslandContext& context, Real violation) {
     } while (solved && putBackViolated());
     for (const HeldRow& held : leftOut_) rows_[held.row].hi = held.hi;
     if (!solved) {
-        ++context.report.treeFallbacks;
+        ++context.counters.treeFallbacks;
         return false;
     }
     const std::span<const Real> lambda = tree_.impulses();

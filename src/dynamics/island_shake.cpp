@@ -49,7 +49,7 @@ bool Island::closeDrift(Real dt, IslandContext& context) {
     const bool converging = second.drift <= 0.1 * first.drift + kShakeTolerance;
     if (!wellConditioned || !converging || keepsMoreEnergy(dt, context)) {
         std::copy(beforeShake_.begin(), beforeShake_.end(), bodies_.begin());
-        ++context.report.shakeRefusals;
+        ++context.counters.shakeRefusals;
     }
     return true;
 }

@@ -17,10 +17,10 @@ constexpr Real kFarGap = 0.01;
 
 void Island::step(Real dt, IslandContext& context) {
     if (!settingsSet_) {
-        exact_.setSettings(context.settings.exact);
-        exactPosition_.setSettings(context.settings.exact);
-        tree_.setSettings(context.settings.exact);
-        pgs_.setSettings(context.settings.pgs);
+        exact_.setSettings(context.tuning.exact);
+        exactPosition_.setSettings(context.tuning.exact);
+        tree_.setSettings(context.tuning.exact);
+        pgs_.setSettings(context.tuning.pgs);
         settingsSet_ = true;
     }
     leaveOutFarPoints(dt, context);
@@ -53,11 +53,11 @@ void Island::step(Real dt, IslandContext& context) {
     // SHAKE's velocity change closes an O(dt²) drift. After PGS the joints hold only as far as
     // its sweeps got, the drift is O(dt), and giving it back as velocity pumps energy (a
     // resting ragdoll's head kept spinning at 5 rad/s): the projection alone removes it.
-    const int passes = context.report.projectionPasses;
+    const int passes = context.counters.projectionPasses;
     const bool jointErrorsAtPoses = !iterative(context) && !closeDrift(dt, context);
     projectPositions(context, jointErrorsAtPoses);
     farPointsApart_ = false;
-    restedLastStep_ = jointErrorsAtPoses && context.report.projectionPasses == passes;
+    restedLastStep_ = jointErrorsAtPoses && context.counters.projectionPasses == passes;
 }
 
 void Island::project(IslandContext& context) { projectPositions(context, false); }
@@ -204,21 +204,21 @@ LcpStatus Island::solveVelocities(IslandContext& context) {
     std::span<Real> x = system_.solution();
     std::span<LcpRowState> states = system_.states();
     sparseAnswered_ = false;
-    if (large(context)) ++context.report.largeIslands;
+    if (large(context)) ++context.counters.largeIslands;
     if (iterative(context)) {
-        const LcpPgsResult r = rowPgs_.solve(rows_, system_, bodies_.size(), x, context.settings.pgs);
-        context.report.iterations = std::max(context.report.iterations, r.iterations);
+        const LcpPgsResult r = rowPgs_.solve(rows_, system_, bodies_.size(), x, context.tuning.pgs);
+        context.counters.iterations = std::max(context.counters.iterations, r.iterations);
         context.report.residual = std::max(context.report.residual, r.residual);
         return r.status == LcpStatus::NotConverged ? LcpStatus::Solved : r.status;
     }
     if (context.settings.solver == SolverKind::Tree) {
         if (solveWithTree(context)) return LcpStatus::Solved;
-        ++context.report.treeFallbacks;
+        ++context.counters.treeFallbacks;
         system_.buildMatrix(rows_);
     }
     const LcpProblem problem = system_.problem();
     const LcpResult r = exact_.solve(problem, x, states);
-    context.report.pivots += r.pivots;
+    context.counters.pivots += r.pivots;
     context.report.residual = std::max(context.report.residual, r.residual);
     if (r.status != LcpStatus::Solved) solveWithFrozenFriction(problem, context);
     return r.status;
@@ -245,7 +245,7 @@ bool Island::solveWithTree(IslandContext& context) {
     const std::span<const Real> lambda = tree_.impulses();
     std::copy(lambda.begin(), lambda.end(), system_.solution().begin());
     statesFromImpulses(context);
-    context.report.pivots += r.pivots;
+    context.counters.pivots += r.pivots;
     context.report.residual = std::max(context.report.residual, r.residual);
     return true;
 }
@@ -257,13 +257,13 @@ bool Island::solveSparse(const WarmStartCache& guess, IslandContext& context) {
     std::span<Real> x = system_.solution();
     std::span<LcpRowState> states = system_.states();
     const SparseLcpResult r =
-        sparse_.solve(rows_.all(), system_.responses(), system_.problem(), bodies_, x, states, context.settings.exact);
+        sparse_.solve(rows_.all(), system_.responses(), system_.problem(), bodies_, x, states, context.tuning.exact);
     if (r.status == LcpStatus::Solved) {
         context.report.residual = std::max(context.report.residual, r.residual);
         sparseAnswered_ = true;
         return true;
     }
-    ++context.report.sparseFallbacks;
+    ++context.counters.sparseFallbacks;
     guess.recall(rowKeys_, states, x);
     return false;
 }
@@ -274,7 +274,7 @@ bool Island::solveSparse(const WarmStartCache& guess, IslandContext& context) {
 void Island::statesFromImpulses(const IslandContext& context) {
     const std::span<const Real> x = system_.solution();
     const std::span<LcpRowState> states = system_.states();
-    const Real tolerance = context.settings.exact.tolerance;
+    const Real tolerance = context.tuning.exact.tolerance;
     for (std::size_t i = 0; i < rows_.size(); ++i) {
         const ConstraintRow& r = rows_[i];
         Real lo = r.lo, hi = r.hi;
@@ -298,7 +298,7 @@ void Island::solveWithFrozenFriction(const LcpProblem& problem, IslandContext& c
     std::span<LcpRowState> states = system_.states();
     context.velocityWarmStart.recall(rowKeys_, states, x);
     const LcpPgsResult estimate = pgs_.solve(problem, x);
-    context.report.iterations = std::max(context.report.iterations, estimate.iterations);
+    context.counters.iterations = std::max(context.counters.iterations, estimate.iterations);
     context.report.residual = std::max(context.report.residual, estimate.residual);
 
     const std::size_t n = static_cast<std::size_t>(problem.size);

@@ -4,7 +4,7 @@
 // telling whether the joints drifted or are violated needs, at a fraction of writing the rows
 // (no Jacobians, no softness, no inertia).
 
-#include "af/dynamics/joints.h"
+#include "joint_rows.h"
 
 #include <span>
 #include <vector>
@@ -16,12 +16,6 @@ struct RowError {
     Real lo = -kInfinity;
     Real hi = kInfinity;
 };
-
-// writeJointRows (joints.h) with each body's rotation() given too, indexed as bodies: a caller
-// that has them spares the joints computing them for every side.
-JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies, std::span<const Mat3> rotations,
-                             std::span<const Mat3> inverseInertiaWorld, const JointRowSettings& settings,
-                             ConstraintRows& out);
 
 // Appends the errors of the rows writeJointRows would append; the range's `first` indexes `out`.
 JointRowRange writeJointErrors(const Joint& joint, std::span<const RigidBody> bodies, const JointRowSettings& settings,

@@ -3,7 +3,6 @@
 // softness, and the rows several joint types have in common (point, orientation, the cone and
 // pyramid limits on a shaft, angular friction). Each part is derived where it is defined.
 
-#include "af/dynamics/joints.h"
 #include "joint_errors.h"
 
 #include <array>

@@ -1,6 +1,6 @@
 // Shared by both LCP solvers: input validation, the natural residual, status names.
 
-#include "af/dynamics/lcp.h"
+#include "lcp.h"
 
 #include "dynamics/lcp_internal.h"
 

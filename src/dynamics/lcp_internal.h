@@ -10,7 +10,7 @@
 // [0, nC) form the clamped (free, factorised) set C, [nC, nP) the processed rows that are not
 // factorised (at a bound, or held), and [nP, n) the rows not processed yet.
 
-#include "af/dynamics/lcp.h"
+#include "lcp.h"
 
 #include <Eigen/Core>
 

@@ -5,7 +5,7 @@
 // positive definite A and 0 < ω < 2; friction coupling breaks that argument but behaves in
 // practice, as in every sequential-impulse engine.
 
-#include "af/dynamics/lcp.h"
+#include "lcp.h"
 
 #include "dynamics/lcp_internal.h"
 #include "dynamics/pgs_sweeps.h"

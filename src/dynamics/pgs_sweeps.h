@@ -4,7 +4,7 @@
 // away; rows with invDiagonal 0 stay put. Stops after a sweep that changes no x_i by more than
 // tolerance·max(1, ‖x‖∞), or after maxIterations sweeps (status NotConverged).
 
-#include "af/dynamics/lcp.h"
+#include "lcp.h"
 
 #include <algorithm>
 #include <cmath>

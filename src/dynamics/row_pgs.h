@@ -7,7 +7,7 @@
 // Same problem, bounds, coupling, order, relaxation and stopping rule as LcpPgsSolver (lcp.h);
 // the two agree up to rounding.
 
-#include "af/dynamics/lcp.h"
+#include "lcp.h"
 #include "row_system.h"
 
 #include <span>

@@ -3,10 +3,10 @@
 // impulses (or position displacements) Jᵀλ through M⁻¹. Workspace buffers keep their capacity
 // from step to step, so a step allocates nothing once the figure's row count has been seen.
 
-#include "af/dynamics/constraint_row.h"
-#include "af/dynamics/joints.h"
-#include "af/dynamics/lcp.h"
 #include "af/dynamics/rigid_body.h"
+#include "constraint_row.h"
+#include "joint_rows.h"
+#include "lcp.h"
 
 #include <array>
 #include <span>

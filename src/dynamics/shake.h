@@ -16,8 +16,8 @@
 // velocity can also add kinetic energy the next step does not take back. Such a move is refused:
 // see Island::closeDrift and keptKineticEnergy().
 
-#include "af/dynamics/joints.h"
 #include "joint_errors.h"
+#include "joint_rows.h"
 #include "row_system.h"
 
 #include <span>

@@ -21,8 +21,8 @@
 // groups have free rows; each is redone only when that changes, and both keep their buffers'
 // capacity, so a step allocates nothing once the largest structure has been seen.
 
-#include "af/dynamics/constraint_row.h"
 #include "af/dynamics/rigid_body.h"
+#include "constraint_row.h"
 #include "row_system.h"
 
 #include <cstdint>

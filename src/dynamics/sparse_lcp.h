@@ -1,6 +1,6 @@
 #pragma once
-// The fast path of an island's constraint solve: the boxed LCP of af/dynamics/lcp.h on the rows
-// J M⁻¹ Jᵀ of af/dynamics/constraint_row.h, solved by guessing which rows are free and which sit
+// The fast path of an island's constraint solve: the boxed LCP of lcp.h on the rows
+// J M⁻¹ Jᵀ of constraint_row.h, solved by guessing which rows are free and which sit
 // at a bound (the previous step's answer: a resting figure keeps its pattern), solving the free
 // rows' equations with the sparse factorisation of sparse_factor.h (time linear in the bodies for
 // a figure on the ground), and correcting the guess where it was wrong: free rows beyond a bound
@@ -17,8 +17,8 @@
 // finds wrong outside it join it; if that core grows too large, the solve says so and the caller
 // falls back to its other solvers.
 
-#include "af/dynamics/lcp.h"
 #include "dynamics/lcp_internal.h"
+#include "lcp.h"
 #include "sparse_factor.h"
 
 #include <span>

@@ -1,5 +1,5 @@
 #pragma once
-// Inside the tree solver (af/dynamics/tree_solver.h): the forest of primary joints, and its
+// Inside the tree solver (tree_solver.h): the forest of primary joints, and its
 // block LDLᵀ factorisation after Baraff, "Linear-Time Dynamics using Lagrange Multipliers"
 // (SIGGRAPH 1996).
 //
@@ -17,9 +17,9 @@
 // of k rows uses its k×k part (and k rows or columns of its edges), through code instantiated
 // for each k (withSize). Node vectors are 6 long; a joint's entries past k are 0.
 
-#include "af/dynamics/constraint_row.h"
-#include "af/dynamics/joints.h"
 #include "af/dynamics/rigid_body.h"
+#include "constraint_row.h"
+#include "joint_rows.h"
 
 #include <Eigen/Core>
 

@@ -1,7 +1,7 @@
 // The tree solver's steps: which rows are primary, the two problems (velocity, position) on one
 // factorisation, the auxiliary LCP warm-started by row identity, and the primary impulses.
 
-#include "af/dynamics/tree_solver.h"
+#include "tree_solver.h"
 
 #include "row_system.h"
 #include "tree_internal.h"

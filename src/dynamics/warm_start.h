@@ -11,7 +11,7 @@
 // that needs it, so a cache recalled only in order (or never: an island's velocity cache, which
 // the world merges into its own) never builds or checks it.
 
-#include "af/dynamics/lcp.h"
+#include "lcp.h"
 
 #include <cstdint>
 #include <span>

@@ -145,15 +145,15 @@ FigureId World::figureOf(int body) const {
     return slot < 0 ? FigureId{} : state_->ids[static_cast<std::size_t>(slot)];
 }
 
-void World::setContactSource(RowSource source) {
-    state_->userRows = std::move(source);
-    state_->useRowSources();
-}
 std::vector<RigidBody>& World::bodies() { return state_->bodies; }
 const std::vector<RigidBody>& World::bodies() const { return state_->bodies; }
 const std::vector<Joint>& World::joints() const { return state_->joints; }
 CollisionWorld& World::collision() { return state_->collision; }
 const CollisionWorld& World::collision() const { return state_->collision; }
+int World::addStaticPlane(const Plane& plane, ContentsMask contents) { return state_->collision.addPlane(plane, contents); }
+int World::addStaticBrush(const Polytope& worldShape, ContentsMask contents) {
+    return state_->collision.addStatic(worldShape, contents);
+}
 const WorldSettings& World::settings() const { return state_->settings; }
 Real World::time() const { return state_->time; }
 const StepReport& World::lastStep() const { return state_->report; }

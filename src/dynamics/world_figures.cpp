@@ -171,11 +171,15 @@ void World::setPose(FigureId figure, std::span<const RigidPose> poses) {
 }
 
 void World::setVelocity(BodyRef body, const Vec3& linear, const Vec3& angular) {
+    setVelocity(state_->bodyIndex(body), linear, angular);
+}
+
+void World::setVelocity(int body, const Vec3& linear, const Vec3& angular) {
     requireFinite(linear, "a linear velocity");
     requireFinite(angular, "an angular velocity");
     State& s = *state_;
-    RigidBody& b = s.bodies[static_cast<std::size_t>(s.bodyIndex(body))];
-    s.wake(s.slot(body.figure));
+    if (const int f = s.bodyFigure[static_cast<std::size_t>(body)]; f >= 0) s.wake(f);
+    RigidBody& b = s.bodies[static_cast<std::size_t>(body)];
     b.linearVelocity = linear;
     b.angularVelocity = angular;
 }

@@ -5,6 +5,9 @@
 #include "af/dynamics/world.h"
 #include "contact_set.h"
 #include "island.h"
+#include "row_source.h"
+#include "solver_counters.h"
+#include "solver_tuning.h"
 #include "warm_start.h"
 
 #include <cstdint>
@@ -16,6 +19,7 @@ namespace af {
 
 struct World::State {
     WorldSettings settings;
+    SolverTuning tuning;  // detail::WorldAccess::setTuning's
     std::vector<RigidBody> bodies;
     std::vector<Joint> joints;
     // Figures by slot, in spawn order; a removal closes the gap (world_figures.cpp). Ids stay.
@@ -28,10 +32,11 @@ struct World::State {
     std::vector<int> jointFigure;
     std::vector<std::uint8_t> jointIsBind;
     std::optional<Drag> drag;
-    RowSource userRows;   // setContactSource's
+    RowSource userRows;   // detail::WorldAccess::setContactSource's
     RowSource extraRows;  // what the islands call: userRows and the drag's rows
     Real time = 0;
     StepReport report;
+    SolverCounters counters;  // the rest of the last step's report (detail::WorldAccess)
     int failures = 0;
 
     // Collision: shapes and filters, per-body surface data and reach, this step's contacts.

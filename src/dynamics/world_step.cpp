@@ -28,6 +28,7 @@ void join(std::vector<int>& parent, int a, int b) {
 void World::step() {
     State& s = *state_;
     s.report = {};
+    s.counters = {};
     s.applyDrag();
     s.startLinear.resize(s.bodies.size());
     s.startAngular.resize(s.bodies.size());
@@ -245,7 +246,7 @@ template <class Run>
 void World::State::forEachIsland(bool ofSearch, Run run) {
     if (!(ofSearch && searchKept && islandsOfSearch && !extraRows)) buildIslands();
     islandsOfSearch = ofSearch;
-    IslandContext shared{settings, extraRows, bodies, report, warmStart};
+    IslandContext shared{settings, tuning, extraRows, bodies, report, counters, warmStart};
     const IslandWorld world{bodies, joints, contacts.points(), localOf};
     for (std::size_t k = 0; k < islandCount; ++k) {
         Island& island = islands[k];
@@ -256,8 +257,9 @@ void World::State::forEachIsland(bool ofSearch, Run run) {
 
 void World::State::substep(Real dt) {
     // The report tells of the last substep's velocity solves (summed over the islands).
-    report.rows = report.pivots = report.iterations = report.largeIslands = report.projectionPasses = 0;
+    report.rows = 0;
     report.residual = 0;
+    counters.pivots = counters.iterations = counters.largeIslands = counters.projectionPasses = 0;
     for (const Joint& j : joints)
         if (j.type == ConstraintType::Spring && (awake(j.bodyA) || awake(j.bodyB))) applySpringForces(j, bodies);
     findContacts(dt);

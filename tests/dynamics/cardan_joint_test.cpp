@@ -114,9 +114,9 @@ TEST(CardanJoint, SwungHardItKeepsItsArmsPerpendicularAndStopsAtBothRanges) {
         Real armsOff = 0, overshoot = 0;
         for (const Vec3& throwAbout : {Vec3(6, -7, 0), Vec3(-6, 7, 0), Vec3(7, 6, 0), Vec3(-7, -6, 0)}) {
             World world(figure, test::dynamicsOnly());
-            RigidBody& bob = world.bodies()[0];
-            bob.angularVelocity = speed * throwAbout;
-            bob.linearVelocity = bob.angularVelocity.cross(bob.position - anchor);
+            const RigidBody& bob = world.bodies()[0];
+            const Vec3 spin = speed * throwAbout;
+            world.setVelocity(0, spin.cross(bob.position - anchor), spin);
             const Quat q0 = bob.orientation;
             Real engineArmsOff = 0, ownArmsOff = 0, worstPoint = 0;
             for (int i = 0; i < 120; ++i) {

@@ -3,6 +3,7 @@
 // steps makes it look again.
 
 #include "af/geometry/shapes.h"
+#include "dynamics/world_access.h"
 #include "scene_test_util.h"
 
 namespace af {
@@ -24,7 +25,7 @@ World boxesApart() {
     World world(settings);
     world.addFigure(freeBox(Vec3(5, 5, 5), Vec3(0, 0, 5), 0));
     world.addFigure(freeBox(Vec3(5, 5, 5), Vec3(13, 0, 5), 0));
-    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
     for (int i = 0; i < 60; ++i) world.step();
     return world;
 }
@@ -36,8 +37,8 @@ TEST(ContactSearch, ABoxThrownAtAnotherBetweenRestingStepsBouncesOffIt) {
     World world = boxesApart();
     ASSERT_FALSE(touching(world, 0, 1));
     ASSERT_LT(world.kineticEnergy(), 1e-9) << "both boxes rest";
-    world.bodies()[1].position.x() = 10.5;
-    world.bodies()[1].linearVelocity = Vec3(-60, 0, 0);
+    detail::WorldAccess::bodies(world)[1].position.x() = 10.5;  // behind the search's back
+    world.setVelocity(1, Vec3(-60, 0, 0), world.bodies()[1].angularVelocity);
     world.step();
     EXPECT_NEAR(world.bodies()[0].linearVelocity.x(), -42, 1e-6);
     EXPECT_NEAR(world.bodies()[1].linearVelocity.x(), -18, 1e-6);
@@ -75,14 +76,14 @@ TEST(ContactSearch, ARestingBoxKeepsTouchingTheFloorStepAfterStep) {
 // first box would not move and the second would sink into it.
 TEST(ContactSearch, AForceDrivingARestingBoxIntoItsNeighbourPushesItWithinTheStep) {
     World world = boxesApart();
-    world.bodies()[1].position.x() = 10.5;
+    detail::WorldAccess::bodies(world)[1].position.x() = 10.5;
     for (int i = 0; i < 30; ++i) world.step();
     ASSERT_LT(world.kineticEnergy(), 1e-9) << "both boxes rest";
     const Real dt = world.settings().timeStep;
     const Real gap = (world.bodies()[1].position.x() - 5) - (world.bodies()[0].position.x() + 5) + world.settings().contact.slop;
     ASSERT_NEAR(gap, 0.55, 1e-6);
-    RigidBody& pushed = world.bodies()[1];
-    pushed.force = Vec3(-6000 / pushed.inverseMass, 0, 0);
+    const RigidBody& pushed = world.bodies()[1];
+    world.addForce(1, pushed.position, Vec3(-6000 / pushed.inverseMass, 0, 0));
     world.step();
     EXPECT_NEAR(world.bodies()[0].linearVelocity.x(), -50 + gap / (2 * dt), 1e-6);
     EXPECT_NEAR(world.bodies()[1].linearVelocity.x(), -50 - gap / (2 * dt), 1e-6);

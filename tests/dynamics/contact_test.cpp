@@ -1,7 +1,8 @@
 // Contact rows with hand-made contacts: a box on a slope holds below the friction angle and
 // slides as Coulomb says above it; a dropped box bounces only above the restitution threshold.
 
-#include "af/dynamics/contact.h"
+#include "dynamics/contact_rows.h"
+#include "dynamics/world_access.h"
 #include "world_test_util.h"
 
 #include <cmath>
@@ -45,7 +46,7 @@ Real slideAfter(Real slopeDegrees, Real friction, Real seconds) {
     const Real a = slopeDegrees * kPi / 180;
     settings.gravity = 1066 * Vec3(std::sin(a), 0, -std::cos(a));
     World world(box(), test::dynamicsOnly(settings));
-    world.setContactSource(groundContacts(friction));
+    detail::WorldAccess::setContactSource(world, groundContacts(friction));
     const Real x0 = world.bodies()[0].position.x();
     for (int i = 0; i < static_cast<int>(seconds * 60); ++i) world.step();
     EXPECT_EQ(world.solverFailures(), 0);
@@ -69,7 +70,7 @@ TEST(Contact, BoxSlidesAboveTheFrictionAngleAsCoulombSays) {
 
 TEST(Contact, RestingBoxDoesNotSinkOrJitter) {
     World world(box(), test::dynamicsOnly());
-    world.setContactSource(groundContacts(0.8));
+    detail::WorldAccess::setContactSource(world, groundContacts(0.8));
     for (int i = 0; i < 300; ++i) world.step();
     EXPECT_NEAR(world.bodies()[0].position.z(), kHalf, ContactSettings{}.slop + 1e-6);
     EXPECT_LT(world.bodies()[0].linearVelocity.norm(), 1e-6);
@@ -78,9 +79,9 @@ TEST(Contact, RestingBoxDoesNotSinkOrJitter) {
 
 TEST(Contact, DroppedBoxBouncesWithItsRestitution) {
     World world(box(), test::dynamicsOnly());
-    world.bodies()[0].position.z() = kHalf + 0.05;
-    world.bodies()[0].linearVelocity = Vec3(0, 0, -300);
-    world.setContactSource(groundContacts(0, 0.4));
+    detail::WorldAccess::bodies(world)[0].position.z() = kHalf + 0.05;
+    world.setVelocity(0, Vec3(0, 0, -300), world.bodies()[0].angularVelocity);
+    detail::WorldAccess::setContactSource(world, groundContacts(0, 0.4));
     world.step();
     EXPECT_NEAR(world.bodies()[0].linearVelocity.z(), 0.4 * (300 + 1066.0 / 60), 1.0);
 }

@@ -2,8 +2,8 @@
 // Two-body figures with one constraint, random poses and velocities, and moving bodies along
 // their velocities, for the joint tests.
 
-#include "af/dynamics/joints.h"
 #include "af/figure/figure.h"
+#include "dynamics/joint_rows.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // several kinds, and a ragdoll-sized problem built from Jacobians the way the engine will build it.
 // Header-only so that bench/bench_lcp.cpp can use the same scene.
 
-#include "af/dynamics/lcp.h"
+#include "dynamics/lcp.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

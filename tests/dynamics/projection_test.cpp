@@ -5,6 +5,7 @@
 
 #include "af/geometry/shapes.h"
 #include "dynamics/island.h"
+#include "dynamics/world_access.h"
 #include "scene_test_util.h"
 
 namespace af {
@@ -22,8 +23,8 @@ WorldSettings lyingSettings(SolverKind solver) {
 // centimetres off the floor, some pushed into it by the move) keep it out of the floor.
 World nudgedAndStepped(SolverKind solver, std::size_t nudged, const Vec3& nudge) {
     World world(test::humanoidAt(Vec3(0, 0, 6), 0, 90), lyingSettings(solver));
-    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
-    world.bodies()[nudged].position += nudge;
+    world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
+    detail::WorldAccess::bodies(world)[nudged].position += nudge;  // the one body, before the first step
     world.step();
     return world;
 }
@@ -36,8 +37,8 @@ TEST(Projection, TreeMovesEveryNudgedHumanoidAsTheDenseSolveDoes) {
             SCOPED_TRACE(testing::Message() << "body " << nudged << " nudged by " << nudge.transpose());
             const World tree = nudgedAndStepped(SolverKind::Tree, nudged, nudge);
             const World dense = nudgedAndStepped(SolverKind::Exact, nudged, nudge);
-            ASSERT_EQ(tree.lastStep().treeFallbacks, 0);
-            projected += tree.lastStep().projectionPasses > 0;
+            ASSERT_EQ(detail::WorldAccess::counters(tree).treeFallbacks, 0);
+            projected += detail::WorldAccess::counters(tree).projectionPasses > 0;
             // Every row within positionTolerance (1e-10) after the projection's passes.
             EXPECT_LT(tree.maxJointError(), 1e-9);
             EXPECT_NEAR(tree.maxPenetration(), dense.maxPenetration(), 1e-9);
@@ -86,15 +87,17 @@ HubAndBar hubAndBar() {
 std::vector<RigidBody> projected(HubAndBar scene, SolverKind solver) {
     WorldSettings settings;
     settings.solver = solver;
+    const SolverTuning tuning;
     StepReport report;
+    SolverCounters counters;
     WarmStartCache noWarmStart;
-    IslandContext context{settings, {}, scene.bodies, report, noWarmStart};
+    IslandContext context{settings, tuning, {}, scene.bodies, report, counters, noWarmStart};
     const std::vector<int> bodyIds{0, 1}, jointIds{0}, pointIds{0}, localOf{0, 1};
     Island island;
     island.gather(bodyIds, jointIds, pointIds, IslandWorld{scene.bodies, scene.joints, scene.points, localOf});
     island.project(context);
-    EXPECT_EQ(report.treeFallbacks, 0);
-    EXPECT_GT(report.projectionPasses, 0);
+    EXPECT_EQ(counters.treeFallbacks, 0);
+    EXPECT_GT(counters.projectionPasses, 0);
     island.scatter(scene.bodies, scene.joints);
     // The contact holds (within the slop) and the hinge is closed.
     EXPECT_GT(-currentDepth(scene.points[0], scene.bodies), -settings.contact.slop - 1e-9);

@@ -3,8 +3,7 @@
 // with limits, joint friction and contacts with coupled friction.
 
 #include "../figure/figure_test_util.h"
-#include "af/dynamics/contact.h"
-#include "af/dynamics/joints.h"
+#include "dynamics/contact_rows.h"
 #include "dynamics/row_pgs.h"
 #include "dynamics/row_system.h"
 #include "world_test_util.h"

@@ -4,9 +4,9 @@
 // with the tree solver, and the dense exact answer (RowSystem + LcpExactSolver) to compare with.
 
 #include "../figure/figure_test_util.h"
-#include "af/dynamics/contact.h"
-#include "af/dynamics/tree_solver.h"
+#include "dynamics/contact_rows.h"
 #include "dynamics/row_system.h"
+#include "dynamics/tree_solver.h"
 #include "scene_test_util.h"
 
 #include <algorithm>

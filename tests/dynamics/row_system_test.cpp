@@ -2,8 +2,7 @@
 // are RigidBody's, and the displacements of a solve can be applied after the caller's rows have
 // been rewritten (with other rows, or none).
 
-#include "af/dynamics/contact.h"
-#include "af/dynamics/joints.h"
+#include "dynamics/contact_rows.h"
 #include "dynamics/row_system.h"
 #include "scene_test_util.h"
 

@@ -3,7 +3,6 @@
 // joints' tree (with fill for loops, block by block for unconnected figures); the answer must be
 // the same up to rounding.
 
-#include "af/dynamics/joints.h"
 #include "dynamics/row_system.h"
 #include "dynamics/shake.h"
 #include "scene_test_util.h"

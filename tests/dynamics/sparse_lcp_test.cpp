@@ -6,7 +6,7 @@
 // refined without factorising, and that rows the
 // factorisation cannot take are refused rather than solved wrongly.
 
-#include "af/dynamics/world.h"
+#include "dynamics/solver_tuning.h"
 #include "dynamics/sparse_lcp.h"
 #include "row_scene_util.h"
 
@@ -20,7 +20,7 @@ namespace {
 using namespace test;
 
 // The pivoting solver's settings as a world uses them (tolerance, frozen friction boxes).
-const LcpExactSettings kSettings = WorldSettings{}.exact;
+const LcpExactSettings kSettings = SolverTuning{}.exact;
 
 // What the sparse solver is given: the rows (friction held at 0 for the position problem, as
 // World does), their responses and the problem's right-hand side and bounds.

@@ -55,7 +55,7 @@ TEST(WorldFigures, ASpawnedDefinitionIsTheFigureBuiltWhereItWasPlaced) {
 TEST(WorldFigures, HandlesStayValidWhenAnotherFigureIsRemoved) {
     const auto definition = humanoidDefinition();
     World world;
-    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
     const FigureId a = world.spawn(definition, placedAt(Vec3(0, 0, 10), 0, 90));
     const FigureId b = world.spawn(definition, placedAt(Vec3(200, 0, 10), 0, 90));
     const FigureId c = world.spawn(definition, placedAt(Vec3(400, 0, 10), 0, 90));
@@ -82,7 +82,7 @@ TEST(WorldFigures, HandlesStayValidWhenAnotherFigureIsRemoved) {
 // Two boxes stacked and resting: removing the lower one wakes the upper, which falls to the floor.
 TEST(WorldFigures, RemovingAFigureWakesWhatRestedOnIt) {
     World world;
-    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
     const FigureId lower = world.addFigure(freeBox(Vec3(8, 8, 8), Vec3(0, 0, 8)));
     const FigureId upper = world.addFigure(freeBox(Vec3(4, 4, 4), Vec3(0, 0, 20)));
     ASSERT_GT(stepUntilRest(world, 3), 0);
@@ -158,7 +158,7 @@ TEST(WorldFigures, SpawnFromPosePlacesTheBodiesAndTakesVelocitiesFromTwoPoses) {
 TEST(WorldFigures, ADraggedHandHoldsTheFigureBelowTheTarget) {
     const auto definition = humanoidDefinition();
     World world;
-    world.collision().addPlane(Plane{Vec3::UnitZ(), 0});
+    world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
     const FigureId id = world.spawn(definition, placedAt(Vec3(0, 0, 1), 0, 90));
     ASSERT_GT(stepUntilRest(world, 4), 0);
     const int hand = definition->findBody("rhand");

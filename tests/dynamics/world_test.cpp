@@ -18,7 +18,7 @@ constexpr Real kPi = 3.14159265358979323846;
 // Swings the pendulum's body rigidly about the pivot by `degrees` about +X.
 void tilt(World& world, const Vec3& pivot, Real degrees) {
     const Quat turn(Eigen::AngleAxis<Real>(degrees * kPi / 180, Vec3::UnitX()));
-    RigidBody& bob = world.bodies()[0];
+    RigidBody& bob = detail::WorldAccess::bodies(world)[0];  // before the first step
     bob.position = pivot + turn * (bob.position - pivot);
     bob.orientation = turn * bob.orientation;
 }
@@ -95,7 +95,7 @@ Real runChain(SolverKind solver, Real seconds) {
         EXPECT_EQ(world.solverFailures(), 0);
     }
     if (solver == SolverKind::Pgs) {
-        EXPECT_GT(world.lastStep().iterations, 0) << "PGS solved the velocities";
+        EXPECT_GT(detail::WorldAccess::counters(world).iterations, 0) << "PGS solved the velocities";
     }
     return worst;
 }
@@ -180,15 +180,27 @@ TEST(WorldChain, TwoRunsAreBitIdentical) {
 // Joint forces are internal: with no gravity and no air friction a tumbling chain keeps its
 // momentum. The links are cubes, whose free rotation integrates exactly, so whatever changes
 // the angular momentum would be the joints' doing.
+// A body of no figure (World's bodies-and-joints constructor) takes its velocities by index.
+TEST(WorldBodies, ABodyOfNoFigureTakesItsVelocitiesByIndex) {
+    WorldSettings settings;
+    settings.gravity.setZero();
+    World world({RigidBody::dynamic(1, Mat3::Identity(), Vec3::Zero(), Quat::Identity())}, {}, settings);
+    world.setVelocity(0, Vec3(60, 0, 0), Vec3(0, 0, 1));
+    world.step();
+    EXPECT_NEAR(world.bodies()[0].position.x(), 1, 1e-12) << "60 units/s for 1/60 s";
+    EXPECT_LT((world.bodies()[0].angularVelocity - Vec3(0, 0, 1)).norm(), 1e-12) << "a free spin keeps its rate";
+}
+
 TEST(WorldChain, InternalForcesConserveMomentum) {
     WorldSettings settings;
     settings.gravity.setZero();
     World world(horizontalChain(6, 0, true, 5), test::dynamicsOnly(settings));
     std::mt19937 rng(7);
     std::uniform_real_distribution<Real> speed(-20, 20), spin(-2, 2);
-    for (RigidBody& b : world.bodies()) {
-        b.linearVelocity = Vec3(speed(rng), speed(rng), speed(rng));
-        b.angularVelocity = Vec3(spin(rng), spin(rng), spin(rng));
+    for (int b = 0; b < static_cast<int>(world.bodies().size()); ++b) {
+        const Vec3 linear = Vec3(speed(rng), speed(rng), speed(rng));
+        const Vec3 angular = Vec3(spin(rng), spin(rng), spin(rng));
+        world.setVelocity(b, linear, angular);
     }
     auto momentum = [&] {
         Vec3 p = Vec3::Zero(), l = Vec3::Zero();

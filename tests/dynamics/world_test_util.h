@@ -4,6 +4,7 @@
 #include "af/dynamics/world.h"
 #include "af/figure/figure.h"
 #include "af/text/af_parser.h"
+#include "dynamics/world_access.h"
 
 #include <gtest/gtest.h>
 
@@ -92,10 +93,12 @@ inline WorldSettings dynamicsOnly(WorldSettings settings = {}) {
     return settings;
 }
 
-// Turns every body rigidly about `pivot` by `degrees` about +X.
+// Turns every body rigidly about `pivot` by `degrees` about +X, before the first step (the
+// bodies written as they are, where World::setPose would round each rotation through a
+// quaternion anew).
 inline void swingAbout(World& world, const Vec3& pivot, Real degrees) {
     const Quat turn(Eigen::AngleAxis<Real>(degrees * 3.14159265358979323846 / 180, Vec3::UnitX()));
-    for (RigidBody& b : world.bodies()) {
+    for (RigidBody& b : detail::WorldAccess::bodies(world)) {
         b.position = pivot + turn * (b.position - pivot);
         b.orientation = turn * b.orientation;
     }

@@ -17,6 +17,11 @@ if ! diff -u "$source/examples/drop_ragdoll.cpp" "$work/readme_example.cpp"; the
     exit 1
 fi
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
+# The installed headers are the public API and nothing more: each includes only others of them.
+if grep -rn '#include "' "$work/prefix/include/af" | grep -v '#include "af/'; then
+    echo "an installed header includes a header that is not installed" >&2
+    exit 1
+fi
 cmake -S "$source/examples" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" \
     -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
 cmake --build "$work/build" > "$work/build.log"

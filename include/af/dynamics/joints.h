@@ -1,23 +1,18 @@
 #pragma once
-// Joints: the runtime form of a figure's constraints, and the rows they write for the solver.
+// Joints: the runtime form of a figure's constraints.
 //
 // A Joint is plain data, made once from a Figure (makeJoints): every world-space spawn vector
 // is stored in the frame of the body that carries it, so the joint follows its bodies. Each
-// step, writeJointRows appends the joint's rows to a ConstraintRows list: first the equality
-// rows (unbounded), then the limit rows (one-sided, only near or past a limit), then the joint
-// friction rows (boxed by the joint's impulse of the previous step). Springs write no equality
-// rows; their force is explicit (applySpringForces).
+// step the world writes the joint's rows for its solver (src/dynamics/joint_rows.h): first the
+// equality rows, then the limit rows (only near or past a limit), then the joint friction rows.
+// Springs write no equality rows; their force is explicit (applySpringForces). What a caller
+// reads here are the measures: how far a joint is open (jointError, jointAngularError), past
+// its limit (limitViolationDegrees), and its angles.
 //
-// Conventions shared by every row (see af/dynamics/constraint_row.h):
-//  * Cdot = J·[vA; ωA; vB; ωB] and `error` = C with dC/dt = Cdot exactly (the Jacobians are
-//    the true derivatives of the written errors, so the position pass may use them as Newton
-//    steps). C = 0 on a satisfied equality row; C ≥ 0 is the allowed side of a limit row.
-//  * `target` is 0: no Baumgarte term; errors are corrected by the step's position pass.
-//  * A = body1 of the .af constraint, B = body2 (kWorldBody for the world); a row against the
-//    world has zero B blocks and bodyB = kWorldBody.
+// Conventions:
+//  * A = body1 of the .af constraint, B = body2 (kWorldBody for the world).
 //  * Angles are radians, right-handed, unless a name says degrees.
 
-#include "af/dynamics/constraint_row.h"
 #include "af/dynamics/rigid_body.h"
 #include "af/figure/figure.h"
 
@@ -126,7 +121,7 @@ struct Joint {
 };
 
 // One joint per figure constraint, in the figure's order, from the spawn poses of the bodies.
-// Body indices are the figure's (and must match the RigidBody span given to the writers).
+// Body indices are the figure's (and must match the RigidBody span given to the measures).
 std::vector<Joint> makeJoints(const Figure& figure);
 
 // Softness of the rows, relative: a row's cfm is this times its own diagonal J M⁻¹ Jᵀ, so it is
@@ -145,26 +140,6 @@ struct JointRowSettings {
     Real limitMargin = kLimitMarginRadians;
     Real springLimitMargin = kSpringLimitMargin;
 };
-
-// Where a joint's rows went: rows [first, first + equalityRows) are the equality rows, then
-// limitRows limit rows, then frictionRows friction rows.
-struct JointRowRange {
-    int first = 0;
-    int equalityRows = 0;
-    int limitRows = 0;
-    int frictionRows = 0;
-
-    int total() const { return equalityRows + limitRows + frictionRows; }
-};
-
-// Appends the joint's rows at the bodies' current poses and velocities.
-JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies,
-                             const JointRowSettings& settings, ConstraintRows& out);
-// The same, with each body's world inverse inertia given (RigidBody::inverseInertiaWorld of
-// bodies[i], indexed alike): a caller writing many rows at one pose computes it once per body.
-JointRowRange writeJointRows(const Joint& joint, std::span<const RigidBody> bodies,
-                             std::span<const Mat3> inverseInertiaWorld, const JointRowSettings& settings,
-                             ConstraintRows& out);
 
 // Doom's spring force (docs/doom-physics.md §4.3), quadratic in the displacement, added to the bodies'
 // external force and torque. Does nothing for other joint types.

@@ -14,6 +14,9 @@ namespace af {
 
 using Quat = Eigen::Quaternion<Real>;
 
+// The body index that names the immovable world (a joint or a contact against nothing).
+inline constexpr int kWorldBody = -1;
+
 struct RigidBody {
     Vec3 position = Vec3::Zero();          // centre of mass
     Quat orientation = Quat::Identity();   // body → world, unit length

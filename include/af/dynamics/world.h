@@ -32,17 +32,17 @@
 // it, when the caller says so (wakeFigure, after setting velocities or poses), or when a static
 // shape is removed.
 // Deterministic: the same inputs give bit-identical results.
+//
+// The solvers' own knobs and counters, and rows written by the caller, are internal
+// (src/dynamics/world_access.h).
 
 #include "af/collision/collision_world.h"
-#include "af/dynamics/constraint_row.h"
 #include "af/dynamics/contact.h"
 #include "af/dynamics/joints.h"
-#include "af/dynamics/lcp.h"
 #include "af/dynamics/rest.h"
 #include "af/dynamics/rigid_body.h"
 #include "af/figure/figure.h"
 
-#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -50,12 +50,16 @@
 
 namespace af {
 
+namespace detail {
+struct WorldAccess;  // src/dynamics/world_access.h: for tests and benchmarks, never for embedders
+}
+
 // Exact: the dense pivoting solve of all rows. Tree (the default): the same answer, within the
 // same tolerance, through the sparse path (src/dynamics/sparse_lcp.h: the last step's pattern,
 // a sparse factorisation, a small dense core for the rows it gets wrong), then the linear-time
-// factorisation of the joint trees (tree_solver.h), then the dense solve, each taking over
-// when the one before gives up. It is the default because it costs a fraction of Exact (our
-// humanoid dropped on the default map: 0.85 against 1.6 ms a step). Pgs: projected
+// factorisation of the joint trees (src/dynamics/tree_solver.h), then the dense solve, each
+// taking over when the one before gives up. It is the default because it costs a fraction of
+// Exact (our humanoid dropped on the default map: 0.85 against 1.6 ms a step). Pgs: projected
 // Gauss–Seidel on the rows (velocities only). The position projection uses the tree solver
 // with Tree, the dense pivoting solve otherwise. Islands beyond exactRowLimit rows use PGS for
 // both.
@@ -66,8 +70,6 @@ struct WorldSettings {
     Real timeStep = Real(1) / 60;      // s
     int substeps = 1;
     SolverKind solver = SolverKind::Tree;
-    LcpExactSettings exact{.frictionBoxPasses = 32};
-    LcpPgsSettings pgs;
     // An island whose pivoting solve would have more rows than this is solved by PGS on its rows
     // (velocities and positions), whatever `solver` says: a pivot costs O(rows²) and the dense
     // matrices O(rows²) memory, so a pile of many figures would take seconds per step. The rows
@@ -99,20 +101,10 @@ struct WorldSettings {
 
 // What the last step did.
 struct StepReport {
-    int rows = 0;                  // velocity rows of the last substep
-    int pivots = 0;                // exact solver: pivots of the last velocity solve
-    int iterations = 0;            // PGS: sweeps of the last velocity solve
-    Real residual = 0;             // LCP residual of the last velocity solve
-    int failures = 0;              // solves of this step that did not report Solved
-    int shakeRefusals = 0;         // substeps whose SHAKE correction was refused (world.cpp)
-    int sparseFallbacks = 0;       // Tree solver: solves its sparse path gave up (tree factorisation used)
-    int treeFallbacks = 0;         // Tree solver: substeps whose rows it could not serve (dense used)
-    int largeIslands = 0;          // islands of the last substep solved by PGS for exceeding exactRowLimit
-    int projectionPasses = 0;      // position projection passes of the last substep (all islands)
+    int rows = 0;       // velocity rows of the last substep
+    Real residual = 0;  // LCP residual of the last velocity solve
+    int failures = 0;   // solves of this step that did not report Solved
 };
-
-// Appends rows for the current step (hand-made contacts in tests, drags in the console).
-using RowSource = std::function<void(std::span<const RigidBody>, ConstraintRows&)>;
 
 // A figure in a world. Ids are never reused: an id names the same figure while others are spawned
 // and removed, and a removed figure's id is refused (std::invalid_argument) by every call.
@@ -173,6 +165,7 @@ public:
     // Puts every body of the figure at the given pose, at rest-free start: zero velocities, awake,
     // and wakes what touched it. Non-finite poses are refused (std::invalid_argument).
     void setPose(FigureId figure, std::span<const RigidPose> bodyPoses);
+    // A body's velocities (linear at the centre of mass); wakes its figure.
     void setVelocity(BodyRef body, const Vec3& linear, const Vec3& angular);
 
     // An impulse (mass units · units/s) at a world point of a body: changes its velocities now,
@@ -190,12 +183,16 @@ public:
     void unbind(FigureId figure);
     int bindCount(FigureId figure) const;
 
-    // The static world (planes, brushes) and the collision rules live here.
+    // The static world: planes and brushes (world space), numbered together, as the collision
+    // world numbers them (BodyContact::staticShape). Adding one wakes nothing: a figure resting
+    // where the shape appears stays as it lies (removeStatic, below, wakes every figure).
+    int addStaticPlane(const Plane& plane, ContentsMask contents = contents::Solid);
+    int addStaticBrush(const Polytope& worldShape, ContentsMask contents = contents::Solid);
+    // The collision world, for queries: its shapes, filters and rules.
     CollisionWorld& collision();
     const CollisionWorld& collision() const;
 
     void step();
-    void setContactSource(RowSource source);
 
     // Rest and wake (see the top of this file).
     bool figureAtRest(FigureId figure) const;
@@ -223,7 +220,9 @@ public:
     FigureRange range(FigureId figure) const;
     // The figure a body of bodies() belongs to (value -1 for a body of no figure).
     FigureId figureOf(int body) const;
-    // Body-index versions of the calls above.
+    // Body-index versions of the calls above; a body of no figure (World's bodies-and-joints
+    // constructor) has no figure to wake.
+    void setVelocity(int body, const Vec3& linear, const Vec3& angular);
     void applyImpulse(int body, const Vec3& worldPoint, const Vec3& impulse);
     void addForce(int body, const Vec3& worldPoint, const Vec3& force);
 
@@ -240,6 +239,7 @@ public:
     std::vector<RigidPose> bodyPoses() const;
 
 private:
+    friend struct detail::WorldAccess;
     struct State;
     std::unique_ptr<State> state_;
 };

@@ -15,7 +15,7 @@
 //
 // Primary rows keep the CFM they carry (Doom gives them none), so the answer is the dense one.
 //
-// Units and frames are those of the rows (af/dynamics/constraint_row.h): world frame, impulses
+// Units and frames are those of the rows (constraint_row.h): world frame, impulses
 // in mass·length/s for the velocity problem, mass·length for the position problem.
 //
 // Use, per step:  setStructure once per figure (and when its joints change); then at every pose
@@ -23,10 +23,10 @@
 // applyImpulses or applyDisplacements. No heap allocation once the largest row count has been
 // seen (buffers keep their capacity). Not thread-safe; one solver per figure or thread.
 
-#include "af/dynamics/constraint_row.h"
-#include "af/dynamics/joints.h"
-#include "af/dynamics/lcp.h"
 #include "af/dynamics/rigid_body.h"
+#include "constraint_row.h"
+#include "joint_rows.h"
+#include "lcp.h"
 
 #include <cstdint>
 #include <memory>

@@ -6,14 +6,14 @@
 //     Cdot = linearA·v_A + angularA·ω_A + linearB·v_B + angularB·ω_B.
 // The solver finds an impulse λ (lo ≤ λ ≤ hi) applied as Jᵀλ so that, for the velocities after
 // the step, Cdot = target for a free row, Cdot ≥ target at the lower bound, Cdot ≤ target at the
-// upper bound (the LCP of af/dynamics/lcp.h with w = Cdot − target). A contact or a limit has
+// upper bound (the LCP of lcp.h with w = Cdot − target). A contact or a limit has
 // lo = 0, hi = +∞; a joint row is unbounded; a friction row takes its bounds from the impulse of
 // another row (frictionSource) times frictionCoefficient.
 //
 // `error` is the position-level violation C along the row (same sign convention as Cdot), used
 // by the position correction after integration; 0 for rows that only act on velocities.
 
-#include "af/geometry/math.h"
+#include "af/dynamics/rigid_body.h"
 
 #include <limits>
 #include <utility>
@@ -21,7 +21,6 @@
 
 namespace af {
 
-inline constexpr int kWorldBody = -1;
 inline constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 struct ConstraintRow {
