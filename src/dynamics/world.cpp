@@ -145,10 +145,8 @@ FigureId World::figureOf(int body) const {
     return slot < 0 ? FigureId{} : state_->ids[static_cast<std::size_t>(slot)];
 }
 
-std::vector<RigidBody>& World::bodies() { return state_->bodies; }
 const std::vector<RigidBody>& World::bodies() const { return state_->bodies; }
 const std::vector<Joint>& World::joints() const { return state_->joints; }
-CollisionWorld& World::collision() { return state_->collision; }
 const CollisionWorld& World::collision() const { return state_->collision; }
 int World::addStaticPlane(const Plane& plane, ContentsMask contents) { return state_->collision.addPlane(plane, contents); }
 int World::addStaticBrush(const Polytope& worldShape, ContentsMask contents) {

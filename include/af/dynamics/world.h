@@ -6,10 +6,10 @@
 //     external forces (integrateVelocity);
 //  2. the collision world finds the contact manifolds of the predicted motion (speculative:
 //     pairs closer than what the step can close get points, see contactMargin); awake bodies
-//     joined by joints, contact points or extra rows form islands, and each island runs 3–6 on
+//     joined by joints, contact points or the drag form islands, and each island runs 3–6 on
 //     its own contiguous copy of its bodies (two figures apart never share a solve); every joint
 //     writes its rows (equality, limits, joint friction), every contact point its normal and
-//     friction rows, and the extra row source, if any, adds its rows;
+//     friction rows, and the drag, if any, its rows (src/dynamics/row_source.h);
 //  3. the velocity LCP  J M⁻¹ Jᵀ λ = target − J v + w  is solved (exact pivoting, the tree
 //     solver or PGS, warm started from the previous step's pattern and impulses) and the
 //     impulses applied. Each row's target is raised by its CFM times its previous impulse: a
@@ -33,7 +33,9 @@
 // shape is removed.
 // Deterministic: the same inputs give bit-identical results.
 //
-// The solvers' own knobs and counters, and rows written by the caller, are internal
+// The world is changed only through its calls, which keep its caches, contacts and rest in step
+// with what they change: the bodies and the collision world are read-only here. The solvers' own
+// knobs and counters, rows written by the caller and writable bodies are internal
 // (src/dynamics/world_access.h).
 
 #include "af/collision/collision_world.h"
@@ -189,7 +191,6 @@ public:
     int addStaticPlane(const Plane& plane, ContentsMask contents = contents::Solid);
     int addStaticBrush(const Polytope& worldShape, ContentsMask contents = contents::Solid);
     // The collision world, for queries: its shapes, filters and rules.
-    CollisionWorld& collision();
     const CollisionWorld& collision() const;
 
     void step();
@@ -211,7 +212,6 @@ public:
 
     // Every body of the world in one array (figures in spawn order), and the joints; a body's
     // index changes when a figure before it is removed.
-    std::vector<RigidBody>& bodies();
     const std::vector<RigidBody>& bodies() const;
     const std::vector<Joint>& joints() const;
     struct FigureRange {
