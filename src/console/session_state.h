@@ -3,6 +3,7 @@
 // session_commands.cpp (the commands that drive it).
 
 #include "console/session.h"
+#include "console/session_show.h"
 
 #include "af/figure/figure.h"
 #include "af/text/map_file.h"
@@ -36,6 +37,7 @@ struct Session::State {
     std::map<std::string, std::shared_ptr<const Figure>> definitions;  // by entityDef, lower case
     WriteFaultHook writeHook;
     Real dragDamping = 0.5;
+    ShowReport show;  // the af_show* cvars: steps are timed and described through it
 
     // Each returns an error message, or nothing when it worked.
     std::optional<std::string> loadMap(const std::filesystem::path& path, const Output& out);
