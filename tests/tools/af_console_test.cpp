@@ -299,4 +299,19 @@ TEST(AfConsole, ScreenshotWritesAPictureOfTheWorld) {
     EXPECT_TRUE(contains(bad.err, "screenshot")) << bad.err;
 }
 
+// The af_show* cvars that have a picture change it; the same world without them draws the same.
+TEST(AfConsole, ScreenshotDrawsTheShowCvarsOverTheWorld) {
+    const std::filesystem::path dir = scratchDir();
+    const std::string scene = "spawn ragdoll_humanoid\nwaitRest\n";
+    const auto shot = [&](const std::string& name, const std::string& cvars) {
+        const ConsoleRun run = afConsole("", scene + cvars + "screenshot \"" + (dir / name).string() + "\"\n");
+        EXPECT_EQ(run.status, 0) << run.err;
+        return readAll(dir / name);
+    };
+    const std::string plain = shot("plain.png", ""), again = shot("again.png", "af_showMass 1\n");
+    const std::string marked = shot("marked.png", "af_showConstraints 1; af_showLimits 1; af_showTrees 1\n");
+    EXPECT_EQ(plain, again) << "af_showMass has no picture";
+    EXPECT_NE(plain, marked);
+}
+
 }  // namespace
