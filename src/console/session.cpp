@@ -60,6 +60,13 @@ Session::~Session() = default;
 const World& Session::world() const { return state_->world; }
 const std::vector<Polytope>& Session::statics() const { return state_->statics; }
 std::optional<Real> Session::floorZ() const { return state_->floorZ; }
+std::vector<std::string> Session::bodyNames(std::string_view entity) const {
+    std::vector<std::string> names;
+    for (const Entity& e : state_->entities)
+        if (equalsIgnoreCase(e.name, entity))
+            for (const FigureBody& b : state_->world.definition(e.figure).bodies) names.push_back(b.name);
+    return names;
+}
 void Session::setWriteFaultHook(WriteFaultHook hook) { state_->writeHook = std::move(hook); }
 
 void Session::State::resetWorld() {

@@ -281,6 +281,17 @@ TEST(AfConsole, AtATerminalItPromptsCompletesNamesWithTabAndKeepsHistoryAcrossRu
     }
 }
 
+// Tab after `drag ENTITY` completes the entity's body names (console_completion.h).
+TEST(AfConsole, AtATerminalTabCompletesABodyNameAfterDragEntity) {
+    Terminal terminal(scratchDir());
+    if (!terminal.started()) GTEST_SKIP() << "no pseudo-terminal here";
+    ASSERT_TRUE(terminal.typeAtPrompt("spawn ragdoll_humanoid\n")) << terminal.screen();
+    ASSERT_TRUE(terminal.typeAtPrompt("drag ragdoll_humanoid_1 rha\t0 0 60\n")) << terminal.screen();
+    ASSERT_TRUE(terminal.typeAtPrompt("quit\n")) << terminal.screen();
+    EXPECT_EQ(terminal.finish(), 0) << terminal.screen();
+    EXPECT_TRUE(contains(terminal.screen(), "dragging ragdoll_humanoid_1 rhand")) << terminal.screen();
+}
+
 }  // namespace
 
 namespace {
