@@ -65,8 +65,9 @@ struct Shown {
     const RigidBody& body(int b) const { return world.bodies()[std::size_t(range.firstBody + b)]; }
 };
 
-std::string constraintLine(const Shown& e, const Joint& j) {
-    return padded(toString(j.type), 18) + "  " + e.bodyName(j.bodyA) + " - " + e.bodyName(j.bodyB) + "  at " +
+// `kindWidth` lines up the bodies of a list (the longest kind, ballAndSocketJoint, is 18 letters).
+std::string constraintLine(const Shown& e, const Joint& j, std::size_t kindWidth = 0) {
+    return padded(toString(j.type), kindWidth) + "  " + e.bodyName(j.bodyA) + " - " + e.bodyName(j.bodyB) + "  at " +
            vec(jointAnchor(j, e.world.bodies()));
 }
 
@@ -134,7 +135,7 @@ std::vector<std::pair<bool ShowFlags::*, Block>> blocks() {
              const std::vector<const Joint*> joints = figureJoints(e.world, e.entity.figure);
              std::size_t width = 0;
              for (const Joint* j : joints) width = std::max(width, j->name.size());
-             for (const Joint* j : joints) out.info("  " + padded(j->name, width) + "  " + constraintLine(e, *j));
+             for (const Joint* j : joints) out.info("  " + padded(j->name, width) + "  " + constraintLine(e, *j, 18));
          }},
         {&ShowFlags::constraintNames, [](const Shown& e, const Output& out) {
              std::string line = "af_showConstraintNames " + e.entity.name + ":";
