@@ -28,7 +28,7 @@ void join(std::vector<int>& parent, int a, int b) {
 void World::step() {
     State& s = *state_;
     s.report = {};
-    s.applyDrag();
+    s.wakeDragged();
     s.startLinear.resize(s.bodies.size());
     s.startAngular.resize(s.bodies.size());
     for (std::size_t i = 0; i < s.bodies.size(); ++i) {
