@@ -28,6 +28,7 @@ struct Session::State {
     std::vector<std::filesystem::path> roots;
     std::unique_ptr<ResourceIndex> index;
     World world;
+    WorldSettings worldSettings;  // the simulation cvars' (session_cvars.cpp); every world is built with them
     std::vector<Polytope> statics;  // world space, for placing spawns
     std::optional<Real> floorZ;     // the infinite floor, when the map has no brushes
     std::optional<MapFile> map;
@@ -54,7 +55,9 @@ struct Session::State {
     std::string unusedName(const std::string& entityDef) const;
 };
 
-// Registers the session's commands and cvars (session_commands.cpp).
+// Registers the session's commands and cvars (session_commands.cpp), and the simulation cvars
+// among them (session_cvars.cpp).
 void registerSessionCommands(Session::State& state, CommandSystem& console);
+void registerSimulationCvars(Session::State& state, CommandSystem& console);
 
 }  // namespace af::console
