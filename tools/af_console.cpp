@@ -11,6 +11,7 @@
 // 2 for bad usage (an unknown option) or when the session cannot be made.
 
 #include "af_console_readline.h"
+#include "console_completion.h"
 #include "console_screenshot.h"
 
 #include "console/command_line.h"
@@ -150,7 +151,8 @@ int runConsole(const Options& o, const std::vector<CommandText>& plusCommands) {
 
     if (runner.running()) {
         if (isatty(STDIN_FILENO)) {
-            af::console::runTerminal(console, {af::console::defaultHistoryFile()}, [&](const std::string& line) {
+            const auto complete = [&](std::string_view line) { return af::console::completeConsoleLine(console, session, line); };
+            af::console::runTerminal(complete, {af::console::defaultHistoryFile()}, [&](const std::string& line) {
                 runner.run(line, CommandSystem::kTyped);
                 return runner.running();
             });

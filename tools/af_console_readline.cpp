@@ -1,6 +1,6 @@
 // The interactive loop of af-console (af_console_readline.h): GNU readline for editing, history
-// and completion. Readline is a C library with global state, so the console it completes for is
-// held in a file-local pointer for the duration of runTerminal.
+// and completion. Readline is a C library with global state, so the completer it asks is held in
+// a file-local pointer for the duration of runTerminal.
 
 #include "af_console_readline.h"
 
@@ -21,7 +21,7 @@ namespace {
 // Doom's console prompt.
 constexpr const char* kPrompt = "] ";
 
-const CommandSystem* completingConsole = nullptr;
+const LineCompleter* lineCompleter = nullptr;
 std::vector<std::string> completionCandidates;
 
 // Readline calls this with state 0 for the first match and then for each next one; it frees
@@ -37,8 +37,8 @@ char* nextCandidate(const char*, int state) {
 // candidates that fit it, so readline is told not to fall back to file names.
 char** completeLine(const char* text, int, int end) {
     rl_attempted_completion_over = 1;
-    if (!completingConsole) return nullptr;
-    completionCandidates = completingConsole->complete(std::string_view(rl_line_buffer, std::size_t(end)));
+    if (!lineCompleter) return nullptr;
+    completionCandidates = (*lineCompleter)(std::string_view(rl_line_buffer, std::size_t(end)));
     if (completionCandidates.empty()) return nullptr;
     return rl_completion_matches(text, nextCandidate);
 }
@@ -57,7 +57,7 @@ std::optional<std::filesystem::path> defaultHistoryFile() {
     return std::filesystem::path(home) / ".af_console_history";
 }
 
-void runTerminal(const CommandSystem& console, const TerminalOptions& options,
+void runTerminal(const LineCompleter& complete, const TerminalOptions& options,
                  const std::function<bool(const std::string& line)>& runLine) {
     rl_readline_name = "af-console";  // for `$if af-console` in ~/.inputrc
     // Words end where the console's do (command_line.h): at spaces and `;`; a `"` opens a
@@ -67,7 +67,7 @@ void runTerminal(const CommandSystem& console, const TerminalOptions& options,
     rl_completer_word_break_characters = wordBreaks;
     rl_completer_quote_characters = quotes;
     rl_attempted_completion_function = completeLine;
-    completingConsole = &console;
+    lineCompleter = &complete;
 
     using_history();
     stifle_history(options.historyLines);
@@ -96,7 +96,7 @@ void runTerminal(const CommandSystem& console, const TerminalOptions& options,
         if (write_history(history.c_str()) == 0) history_truncate_file(history.c_str(), options.historyLines);
         else std::cerr << "af-console: warning: cannot write the history file " << history << '\n';
     }
-    completingConsole = nullptr;
+    lineCompleter = nullptr;
 }
 
 }  // namespace af::console

@@ -39,32 +39,10 @@ void addMapStatics(const std::filesystem::path& path, Scene& scene) {
 
 // Height of the ground under (x, y): the highest static top there, or the floor.
 Real groundHeight(const Scene& scene, Real x, Real y) {
-    Real ground = scene.floorZ.value_or(-std::numeric_limits<Real>::infinity());
-    for (const Polytope& p : scene.statics) {
-        Vec3 lo = Vec3::Constant(std::numeric_limits<Real>::infinity()), hi = -lo;
-        for (const Vec3& v : p.vertices) {
-            lo = lo.cwiseMin(v);
-            hi = hi.cwiseMax(v);
-        }
-        if (lo.x() <= x && x <= hi.x() && lo.y() <= y && y <= hi.y()) ground = std::max(ground, hi.z());
-    }
-    if (!std::isfinite(ground)) throw SceneError("nothing to drop the figures on at (0, 0): the map has no brush there");
-    return ground;
-}
-
-// The lowest and highest points of `figure` placed by `placement`.
-Real lowestPoint(const Figure& figure, const RigidPose& placement) {
-    Real lowest = std::numeric_limits<Real>::infinity();
-    for (const FigureBody& b : figure.bodies)
-        for (const Vec3& v : b.shape.vertices) lowest = std::min(lowest, (placement * b.pose).apply(v).z());
-    return lowest;
-}
-
-Real highestPoint(const Figure& figure, const RigidPose& placement) {
-    Real highest = -std::numeric_limits<Real>::infinity();
-    for (const FigureBody& b : figure.bodies)
-        for (const Vec3& v : b.shape.vertices) highest = std::max(highest, (placement * b.pose).apply(v).z());
-    return highest;
+    const std::optional<Real> top = highestTopAt(scene.statics, x, y);
+    if (!top && !scene.floorZ) throw SceneError("nothing to drop the figures on at (0, 0): the map has no brush there");
+    return std::max(top.value_or(-std::numeric_limits<Real>::infinity()),
+                    scene.floorZ.value_or(-std::numeric_limits<Real>::infinity()));
 }
 
 // A rigid push: the same linear and angular velocity for every body, about the figure's centre.
@@ -114,8 +92,8 @@ Scene buildScene(const SceneOptions& options) {
         RigidPose placement;
         placement.rotation = Eigen::AngleAxis<Real>(i * 0.5 * std::numbers::pi_v<Real>, Vec3::UnitZ()).toRotationMatrix() *
                              rotationFromAngles(kTiltDegrees, 0, 0);
-        placement.position.z() = bottom - lowestPoint(definition, placement);
-        bottom = highestPoint(definition, placement) + kPileSpacing;
+        placement.position.z() = bottom - heightRange(definition, placement).lowest;
+        bottom = heightRange(definition, placement).highest + kPileSpacing;
         const FigureId id = scene.world.spawn(scene.definition, placement);
         if (options.seed) push(scene.world, id, *options.seed + static_cast<unsigned>(i));
         scene.figures.push_back(id);

@@ -38,13 +38,6 @@ std::optional<std::vector<Real>> numbers(std::string_view text, std::size_t coun
     return out;
 }
 
-Real lowestPoint(const Figure& figure, const Mat3& rotation) {
-    Real lowest = std::numeric_limits<Real>::infinity();
-    for (const FigureBody& b : figure.bodies)
-        for (const Vec3& v : b.shape.vertices) lowest = std::min(lowest, (rotation * b.pose.apply(v)).z());
-    return lowest;
-}
-
 }  // namespace
 
 Session::Session(std::vector<std::filesystem::path> roots, CommandSystem& console) : state_(std::make_unique<State>()) {
@@ -60,10 +53,17 @@ Session::~Session() = default;
 const World& Session::world() const { return state_->world; }
 const std::vector<Polytope>& Session::statics() const { return state_->statics; }
 std::optional<Real> Session::floorZ() const { return state_->floorZ; }
+std::vector<std::string> Session::bodyNames(std::string_view entity) const {
+    std::vector<std::string> names;
+    for (const Entity& e : state_->entities)
+        if (equalsIgnoreCase(e.name, entity))
+            for (const FigureBody& b : state_->world.definition(e.figure).bodies) names.push_back(b.name);
+    return names;
+}
 void Session::setWriteFaultHook(WriteFaultHook hook) { state_->writeHook = std::move(hook); }
 
 void Session::State::resetWorld() {
-    world = World();
+    world = World(worldSettings);
     statics.clear();
     floorZ.reset();
     entities.clear();
@@ -77,16 +77,9 @@ Entity* Session::State::find(std::string_view name) {
 }
 
 Real Session::State::groundHeight(Real x, Real y) const {
-    Real ground = floorZ.value_or(-std::numeric_limits<Real>::infinity());
-    for (const Polytope& p : statics) {
-        Vec3 lo = Vec3::Constant(std::numeric_limits<Real>::infinity()), hi = -lo;
-        for (const Vec3& v : p.vertices) {
-            lo = lo.cwiseMin(v);
-            hi = hi.cwiseMax(v);
-        }
-        if (lo.x() <= x && x <= hi.x() && lo.y() <= y && y <= hi.y()) ground = std::max(ground, hi.z());
-    }
-    return std::isfinite(ground) ? ground : 0;
+    const std::optional<Real> top = highestTopAt(statics, x, y);
+    if (top && floorZ) return std::max(*top, *floorZ);
+    return top ? *top : floorZ.value_or(0);
 }
 
 // Doom names a spawned entity after its class and a number; ours takes the first number free.
@@ -188,7 +181,7 @@ std::optional<std::string> Session::State::spawn(const std::string& entityDef, c
         if (!v) return "spawn " + entityDef + ": origin must be three numbers, found '" + origin->value + "'";
         placement.position = Vec3((*v)[0], (*v)[1], (*v)[2]);
     } else if (!saved) {
-        placement.position.z() = groundHeight(0, 0) + kDropHeight - lowestPoint(*figure, placement.rotation);
+        placement.position.z() = groundHeight(0, 0) + kDropHeight - heightRange(*figure, placement).lowest;
     }
     std::string name(keys.value("name"));
     if (name.empty()) name = unusedName(entityDef);

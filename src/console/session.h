@@ -29,6 +29,9 @@ public:
     // The static world as placed: the map's brushes (world space), or the infinite floor's height.
     const std::vector<Polytope>& statics() const;
     std::optional<Real> floorZ() const;
+    // The body names of the entity called `entity` (ignoring case), in body order; none when
+    // there is no such entity (tab completion).
+    std::vector<std::string> bodyNames(std::string_view entity) const;
     // Every later write of a map goes through this hook (tests: a save cut short).
     void setWriteFaultHook(WriteFaultHook hook);
 

@@ -44,7 +44,7 @@ std::vector<std::string> entityNames(const State& s) {
 
 // Steps the world n times; the clock moves only here.
 void advance(State& s, int steps) {
-    for (int i = 0; i < steps; ++i) s.world.step();
+    for (int i = 0; i < steps; ++i) s.show.step(s.world);
 }
 
 Status dragCommand(State& s, const CommandArgs& args, const Output& out) {
@@ -100,6 +100,8 @@ void registerSessionCommands(State& s, CommandSystem& console) {
                                       "how much of its own velocity a dragged point keeps each step (docs/doom-physics.md §5.2)");
     damping.onChange = [&s](const CVar& v) { s.dragDamping = v.asReal(); };
     console.addCVar(std::move(damping));
+    registerSimulationCvars(s, console);
+    s.show.attach(console);
     console.addCommand({"map", "FILE", "load a .map: its brushes and its AF entities, posed by their saved body keys", 1, 1,
                         [&s](const CommandArgs& a, const Output& out) { return failure(s.loadMap(a.argv(1), out)); }, {}});
     console.addCommand({"spawn", "ENTITYDEF [KEY VALUE]...", "spawn an AF entityDef (keys: origin \"x y z\", angle, angles, name)", 1, {},
@@ -122,7 +124,7 @@ void registerSessionCommands(State& s, CommandSystem& console) {
                         },
                         {}});
     console.addCommand({"step", "[N]", "advance the world N steps (1)", 0, 1,
-                        [&s](const CommandArgs& a, const Output&) {
+                        [&s](const CommandArgs& a, const Output& out) {
                             int n = 1;
                             if (a.argc() == 2) {
                                 const auto v = number(a.argv(1));
@@ -130,14 +132,16 @@ void registerSessionCommands(State& s, CommandSystem& console) {
                                 n = static_cast<int>(*v);
                             }
                             advance(s, n);
+                            s.show.print(s, out);
                             return Status::success();
                         },
                         {}});
     console.addCommand({"run", "SECONDS", "advance the world this many seconds", 1, 1,
-                        [&s](const CommandArgs& a, const Output&) {
+                        [&s](const CommandArgs& a, const Output& out) {
                             const auto v = number(a.argv(1));
                             if (!v || *v < 0 || *v > 3600) return Status::failure("run: SECONDS must be a number from 0 to 3600");
                             advance(s, static_cast<int>(std::ceil(*v / s.world.settings().timeStep - 1e-9)));
+                            s.show.print(s, out);
                             return Status::success();
                         },
                         {}});
@@ -150,7 +154,8 @@ void registerSessionCommands(State& s, CommandSystem& console) {
                                 most = *v;
                             }
                             const Real start = s.world.time();
-                            while (!s.world.atRest() && s.world.time() - start < most) s.world.step();
+                            while (!s.world.atRest() && s.world.time() - start < most) s.show.step(s.world);
+                            s.show.print(s, out);
                             if (!s.world.atRest()) return Status::failure("still moving after " + fixed(most) + " s");
                             out.info("at rest after " + fixed(s.world.time() - start) + " s");
                             return Status::success();

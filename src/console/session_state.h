@@ -3,6 +3,7 @@
 // session_commands.cpp (the commands that drive it).
 
 #include "console/session.h"
+#include "console/session_show.h"
 
 #include "af/figure/figure.h"
 #include "af/text/map_file.h"
@@ -27,6 +28,7 @@ struct Session::State {
     std::vector<std::filesystem::path> roots;
     std::unique_ptr<ResourceIndex> index;
     World world;
+    WorldSettings worldSettings;  // the simulation cvars' (session_cvars.cpp); every world is built with them
     std::vector<Polytope> statics;  // world space, for placing spawns
     std::optional<Real> floorZ;     // the infinite floor, when the map has no brushes
     std::optional<MapFile> map;
@@ -36,6 +38,7 @@ struct Session::State {
     std::map<std::string, std::shared_ptr<const Figure>> definitions;  // by entityDef, lower case
     WriteFaultHook writeHook;
     Real dragDamping = 0.5;
+    ShowReport show;  // the af_show* cvars: steps are timed and described through it
 
     // Each returns an error message, or nothing when it worked.
     std::optional<std::string> loadMap(const std::filesystem::path& path, const Output& out);
@@ -52,7 +55,9 @@ struct Session::State {
     std::string unusedName(const std::string& entityDef) const;
 };
 
-// Registers the session's commands and cvars (session_commands.cpp).
+// Registers the session's commands and cvars (session_commands.cpp), and the simulation cvars
+// among them (session_cvars.cpp).
 void registerSessionCommands(Session::State& state, CommandSystem& console);
+void registerSimulationCvars(Session::State& state, CommandSystem& console);
 
 }  // namespace af::console

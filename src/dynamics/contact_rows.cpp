@@ -109,7 +109,7 @@ Real velocityAlong(const ContactView& c, const Side& a, const Side& b, const Vec
         addRowAlong(c, a, b, c.normal, settings.relativeCfm, normal, out);
     }
 
-    if (c.friction <= 0) return normalIndex;
+    if (c.friction <= 0 || !settings.friction) return normalIndex;
     // One loop over the directions, not a call per row: the row writer is inlined once.
     Vec3 directions[2];
     int count = 2;

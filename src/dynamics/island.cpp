@@ -180,12 +180,8 @@ void Island::measureJointErrors(const IslandContext& context, bool keepRows) {
 // The joint rows depend on the bodies' poses, masses and inertias, the joints' impulses (the
 // friction bounds) and the settings; equal bits give equal rows.
 bool Island::restRowsHold(const IslandContext& context) const {
-    static_assert(sizeof(JointRowSettings) == 5 * sizeof(Real), "compare every setting");
-    const JointRowSettings& s = context.settings.rows;
     if (!restRowsHeld_ || restPoses_.size() != bodies_.size() || restImpulses_.size() != joints_.size() ||
-        s.jointCfm != restSettings_.jointCfm || s.limitCfm != restSettings_.limitCfm ||
-        s.frictionCfm != restSettings_.frictionCfm || s.limitMargin != restSettings_.limitMargin ||
-        s.springLimitMargin != restSettings_.springLimitMargin)
+        context.settings.rows != restSettings_)
         return false;
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
         const RigidBody& body = bodies_[b];

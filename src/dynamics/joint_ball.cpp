@@ -18,7 +18,7 @@ JointRowRange writeBallRows(const Joint& joint, const Pair& pair, const JointRow
     range.equalityRows = 3;
     range.limitRows = writeShaftLimitRows(joint, pair, settings, out);
     range.limitRows += writeTwistLimitRows(joint, pair, settings, out);
-    if (const Real bound = frictionBound(joint); bound > 0) {
+    if (const Real bound = frictionBound(joint, settings); bound > 0) {
         for (int k = 0; k < 3; ++k) writeAngularFrictionRow(pair, Vec3::Unit(k), bound, settings.frictionCfm, out);
         range.frictionRows = 3;
     }

@@ -81,7 +81,7 @@ JointRowRange writeCardanRows(const Joint& joint, const Pair& pair, const JointR
     range.equalityRows = 4;
     for (int k = 0; k < 2; ++k) {
         Real centre = 0, halfWidth = 0;
-        if (!rangeOf(joint, k, centre, halfWidth)) continue;
+        if (!settings.limits || !rangeOf(joint, k, centre, halfWidth)) continue;
         // As the hinge's: most writes find the angle far inside its range, without libm's atan2.
         if (surelyInside(wrapAngle(roughAtan2(s.y[k], s.x[k]) - centre), halfWidth - settings.limitMargin)) continue;
         const Real d = wrapAngle(s.angle(k) - centre);
@@ -90,7 +90,7 @@ JointRowRange writeCardanRows(const Joint& joint, const Pair& pair, const JointR
         addAngularRow(pair, [&] { return Vec3((d < 0 ? 1 : -1) * s.gradient(k)); }, c, 0, kInfinity, settings.limitCfm, out);
         ++range.limitRows;
     }
-    if (const Real bound = frictionBound(joint); bound > 0) {
+    if (const Real bound = frictionBound(joint, settings); bound > 0) {
         writeAngularFrictionRow(pair, s.b, bound, settings.frictionCfm, out);
         writeAngularFrictionRow(pair, s.a, bound, settings.frictionCfm, out);
         range.frictionRows = 2;

@@ -75,7 +75,7 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
     }
     range.equalityRows = 5;
 
-    if (joint.limit != LimitType::None && joint.hinge.halfWidth < kPi) {
+    if (settings.limits && joint.limit != LimitType::None && joint.hinge.halfWidth < kPi) {
         const AngleState s = angleState(joint, pair, hB, u1);
         // Most writes find the hinge far inside its V and need no exact angle (atan2 and wrap:
         // 0.4M of the bench drop's 273M instructions).
@@ -89,7 +89,7 @@ JointRowRange writeHingeRows(const Joint& joint, const Pair& pair, const JointRo
             range.limitRows = 1;
         }
     }
-    if (const Real bound = frictionBound(joint); bound > 0) {
+    if (const Real bound = frictionBound(joint, settings); bound > 0) {
         writeAngularFrictionRow(pair, hA, bound, settings.frictionCfm, out);
         range.frictionRows = 1;
     }

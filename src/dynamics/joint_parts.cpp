@@ -227,9 +227,10 @@ void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Rea
     addAngularRow(pair, [&] { return axis; }, 0, -bound, bound, relativeCfm, out);
 }
 
-Real frictionBound(const Joint& joint) {
-    if (joint.friction <= 0 || joint.lastImpulse <= 0) return 0;
-    return joint.friction * joint.lastImpulse;
+Real frictionBound(const Joint& joint, const JointRowSettings& settings) {
+    const Real friction = settings.forcedFriction > 0 ? settings.forcedFriction : joint.friction;
+    if (!settings.friction || friction <= 0 || joint.lastImpulse <= 0) return 0;
+    return friction * joint.lastImpulse;
 }
 
 }  // namespace af::joint_detail

@@ -140,8 +140,9 @@ Real twistLimitViolation(const Joint& joint, const Pair& pair);
 
 // A friction row on the relative angular velocity (ωA − ωB)·axis, boxed by ±bound.
 void writeAngularFrictionRow(const Pair& pair, const Vec3& axis, Real bound, Real relativeCfm, RowOut out);
-// The friction bound f·|λ_previous|, 0 when the joint has no friction this step.
-Real frictionBound(const Joint& joint);
+// The friction bound f·|λ_previous|, 0 when the joint has no friction this step (f: the
+// settings' forced friction, if any, else the joint's own).
+Real frictionBound(const Joint& joint, const JointRowSettings& settings);
 
 // Per type; each returns its counts, `first` is set by the caller.
 JointRowRange writeFixedRows(const Joint&, const Pair&, const JointRowSettings&, RowOut);

@@ -80,6 +80,7 @@ void writeAngleLimitRow(const Pair& pair, Real error, const Vec3& gradient, Real
 }  // namespace
 
 int writeShaftLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
+    if (!settings.limits) return 0;
     const Vec3 shaft = pair.a.direction(joint.limitShaft);
     int written = 0;
     if (joint.limit == LimitType::Cone) {

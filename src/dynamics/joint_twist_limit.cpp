@@ -55,7 +55,7 @@ bool limited(const Joint& joint) { return joint.twistHalfAngle > 0 && joint.twis
 }  // namespace
 
 int writeTwistLimitRows(const Joint& joint, const Pair& pair, const JointRowSettings& settings, RowOut out) {
-    if (!limited(joint)) return 0;
+    if (!settings.limits || !limited(joint)) return 0;
     const TwistState s = twistState(joint, pair);
     // Most writes find the twist far inside its limits and need no exact angle.
     if (surelyInside(s.roughAngle(), joint.twistHalfAngle - settings.limitMargin)) return 0;

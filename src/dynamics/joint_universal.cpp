@@ -51,7 +51,7 @@ JointRowRange writeUniversalRows(const Joint& joint, const Pair& pair, const Joi
     addAngularRow(pair, [&] { return twist.gradient; }, twist.error, -kInfinity, kInfinity, settings.jointCfm, out);
     range.equalityRows = 4;
     range.limitRows = writeShaftLimitRows(joint, pair, settings, out);
-    if (const Real bound = frictionBound(joint); bound > 0) {
+    if (const Real bound = frictionBound(joint, settings); bound > 0) {
         const Vec3 shaft = pair.a.direction(joint.axisA);
         const Vec3 d1 = perpendicular(shaft);
         writeAngularFrictionRow(pair, d1, bound, settings.frictionCfm, out);

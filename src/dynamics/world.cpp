@@ -10,6 +10,7 @@
 namespace af {
 
 World::World(const WorldSettings& settings) : state_(std::make_unique<State>()) {
+    checkSettings(settings, "World");
     State& s = *state_;
     s.settings = settings;
     s.collision = CollisionWorld(settings.collision);

@@ -167,7 +167,6 @@ void World::setPose(FigureId figure, std::span<const RigidPose> poses) {
     s.search.known = false;
     s.settled.known = false;
     s.wake(slot);
-    s.wakeTouching(slot);
 }
 
 void World::setVelocity(BodyRef body, const Vec3& linear, const Vec3& angular) {
@@ -267,7 +266,7 @@ void World::State::useRowSources() {
     };
 }
 
-void World::State::applyDrag() {
+void World::State::wakeDragged() {
     if (drag) wake(slot(drag->body.figure));
 }
 

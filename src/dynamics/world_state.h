@@ -17,6 +17,9 @@
 
 namespace af {
 
+// Throws std::invalid_argument, naming `caller`, for settings a world refuses (world_settings.cpp).
+void checkSettings(const WorldSettings& settings, const char* caller);
+
 struct World::State {
     WorldSettings settings;
     SolverTuning tuning;  // detail::WorldAccess::setTuning's
@@ -113,7 +116,7 @@ struct World::State {
     void renumber();
     // Wakes every figure touching a body of `slot` in the last step's contacts.
     void wakeTouching(int slot);
-    void applyDrag();
+    void wakeDragged();  // a dragged figure never rests
     void writeDragRows(std::span<const RigidBody> all, ConstraintRows& rows) const;
     void useRowSources();
 

@@ -29,7 +29,7 @@ void World::step() {
     State& s = *state_;
     s.report = {};
     s.counters = {};
-    s.applyDrag();
+    s.wakeDragged();
     s.startLinear.resize(s.bodies.size());
     s.startAngular.resize(s.bodies.size());
     for (std::size_t i = 0; i < s.bodies.size(); ++i) {

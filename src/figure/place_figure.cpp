@@ -5,6 +5,9 @@
 #include "af/figure/figure.h"
 #include "af/text/resource_index.h"
 
+#include <algorithm>
+#include <limits>
+
 namespace af {
 
 Figure placeFigure(const Figure& figure, const RigidPose& placement) {
@@ -34,6 +37,19 @@ Skeleton afPoseSkeleton(const AFResources& resources) {
 
 FigureResult buildFigure(const AFResources& resources) {
     return buildFigure(resources.figure->decl, afPoseSkeleton(resources), resources.figure->file);
+}
+
+HeightRange heightRange(const Figure& figure, const RigidPose& placement) {
+    HeightRange range{std::numeric_limits<Real>::infinity(), -std::numeric_limits<Real>::infinity()};
+    for (const FigureBody& b : figure.bodies) {
+        const RigidPose pose = placement * b.pose;
+        for (const Vec3& v : b.shape.vertices) {
+            const Real z = pose.apply(v).z();
+            range.lowest = std::min(range.lowest, z);
+            range.highest = std::max(range.highest, z);
+        }
+    }
+    return range;
 }
 
 }  // namespace af

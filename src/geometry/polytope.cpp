@@ -134,4 +134,18 @@ Polytope translated(const Polytope& polytope, const Vec3& translation) {
     return p;
 }
 
+std::optional<Real> highestTopAt(std::span<const Polytope> shapes, Real x, Real y) {
+    std::optional<Real> top;
+    for (const Polytope& p : shapes) {
+        if (p.vertices.empty()) continue;
+        Vec3 lo = p.vertices[0], hi = lo;
+        for (const Vec3& v : p.vertices) {
+            lo = lo.cwiseMin(v);
+            hi = hi.cwiseMax(v);
+        }
+        if (lo.x() <= x && x <= hi.x() && lo.y() <= y && y <= hi.y()) top = std::max(top.value_or(hi.z()), hi.z());
+    }
+    return top;
+}
+
 }  // namespace af

@@ -42,9 +42,15 @@ TEST(WorldFigures, ASpawnedDefinitionIsTheFigureBuiltWhereItWasPlaced) {
     for (std::size_t c = 0; c < built.constraints.size(); ++c) {
         const FigureConstraint &b = built.constraints[c], &p = placed.constraints[c];
         EXPECT_LT((b.anchor - p.anchor).norm(), 1e-12);
-        if (b.type == ConstraintType::Hinge) EXPECT_LT((b.axis - p.axis).norm(), 1e-14);
-        if (b.limit != LimitType::None && b.type != ConstraintType::Hinge) EXPECT_LT((b.limitAxis - p.limitAxis).norm(), 1e-14);
-        if (b.type == ConstraintType::BallAndSocket) EXPECT_LT((b.shafts[0] - p.shafts[0]).norm(), 1e-14);
+        if (b.type == ConstraintType::Hinge) {
+            EXPECT_LT((b.axis - p.axis).norm(), 1e-14);
+        }
+        if (b.limit != LimitType::None && b.type != ConstraintType::Hinge) {
+            EXPECT_LT((b.limitAxis - p.limitAxis).norm(), 1e-14);
+        }
+        if (b.type == ConstraintType::BallAndSocket) {
+            EXPECT_LT((b.shafts[0] - p.shafts[0]).norm(), 1e-14);
+        }
     }
     World world;
     const FigureId id = world.spawn(humanoidDefinition(), placement);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace af {
 namespace {
@@ -106,6 +107,24 @@ TEST(Figure, PlacementMovesBodiesAndConstraintsRigidly) {
         if (a.limit != LimitType::None && a.type != ConstraintType::Hinge)
             expectNear(b.limitAxis, p.rotation * a.limitAxis, 1e-12, a.name + " limit axis");
     }
+}
+
+// The lowest and highest points of the placed shapes: a translation moves both by its z, and a
+// half turn about X swaps them (negated).
+TEST(Figure, HeightRangeFollowsThePlacement) {
+    const Figure f = buildHumanoid();
+    const HeightRange here = heightRange(f);
+    EXPECT_GT(here.highest - here.lowest, 60) << "our humanoid stands about 70 units tall";
+    RigidPose up;
+    up.position = Vec3(3, -4, 25);
+    const HeightRange lifted = heightRange(f, up);
+    EXPECT_NEAR(lifted.lowest, here.lowest + 25, 1e-12);
+    EXPECT_NEAR(lifted.highest, here.highest + 25, 1e-12);
+    RigidPose flipped;
+    flipped.rotation = Eigen::AngleAxis<Real>(std::numbers::pi_v<Real>, Vec3::UnitX()).toRotationMatrix();
+    const HeightRange upsideDown = heightRange(f, flipped);
+    EXPECT_NEAR(upsideDown.lowest, -here.highest, 1e-9);
+    EXPECT_NEAR(upsideDown.highest, -here.lowest, 1e-9);
 }
 
 TEST(Figure, ConstraintAnchorsResolveToJoints) {

@@ -172,5 +172,18 @@ TEST(Polytope, TranslationKeepsNormalsAndShiftsOffsets) {
     }
 }
 
+// The ground under a point: the highest top of the shapes whose x–y extent covers it.
+TEST(Polytope, HighestTopAtIsTheHighestShapeCoveringThePoint) {
+    const std::vector<Polytope> shapes = {makeBox(Vec3(-100, -100, -16), Vec3(100, 100, 0)),
+                                          makeBox(Vec3(0, 0, 0), Vec3(20, 20, 8)),
+                                          makeBox(Vec3(50, 50, 30), Vec3(60, 60, 40))};
+    EXPECT_EQ(highestTopAt(shapes, -5, -5), Real(0));
+    EXPECT_EQ(highestTopAt(shapes, 10, 10), Real(8));
+    EXPECT_EQ(highestTopAt(shapes, 20, 20), Real(8)) << "an edge covers";
+    EXPECT_EQ(highestTopAt(shapes, 55, 55), Real(40));
+    EXPECT_FALSE(highestTopAt(shapes, 150, 0).has_value());
+    EXPECT_FALSE(highestTopAt({}, 0, 0).has_value());
+}
+
 }  // namespace
 }  // namespace af

@@ -281,6 +281,17 @@ TEST(AfConsole, AtATerminalItPromptsCompletesNamesWithTabAndKeepsHistoryAcrossRu
     }
 }
 
+// Tab after `drag ENTITY` completes the entity's body names (console_completion.h).
+TEST(AfConsole, AtATerminalTabCompletesABodyNameAfterDragEntity) {
+    Terminal terminal(scratchDir());
+    if (!terminal.started()) GTEST_SKIP() << "no pseudo-terminal here";
+    ASSERT_TRUE(terminal.typeAtPrompt("spawn ragdoll_humanoid\n")) << terminal.screen();
+    ASSERT_TRUE(terminal.typeAtPrompt("drag ragdoll_humanoid_1 rha\t0 0 60\n")) << terminal.screen();
+    ASSERT_TRUE(terminal.typeAtPrompt("quit\n")) << terminal.screen();
+    EXPECT_EQ(terminal.finish(), 0) << terminal.screen();
+    EXPECT_TRUE(contains(terminal.screen(), "dragging ragdoll_humanoid_1 rhand")) << terminal.screen();
+}
+
 }  // namespace
 
 namespace {
@@ -297,6 +308,21 @@ TEST(AfConsole, ScreenshotWritesAPictureOfTheWorld) {
     const ConsoleRun bad = afConsole("", "screenshot /no/such/folder/shot.png\n");
     EXPECT_EQ(bad.status, 1);
     EXPECT_TRUE(contains(bad.err, "screenshot")) << bad.err;
+}
+
+// The af_show* cvars that have a picture change it; the same world without them draws the same.
+TEST(AfConsole, ScreenshotDrawsTheShowCvarsOverTheWorld) {
+    const std::filesystem::path dir = scratchDir();
+    const std::string scene = "spawn ragdoll_humanoid\nwaitRest\n";
+    const auto shot = [&](const std::string& name, const std::string& cvars) {
+        const ConsoleRun run = afConsole("", scene + cvars + "screenshot \"" + (dir / name).string() + "\"\n");
+        EXPECT_EQ(run.status, 0) << run.err;
+        return readAll(dir / name);
+    };
+    const std::string plain = shot("plain.png", ""), again = shot("again.png", "af_showMass 1\n");
+    const std::string marked = shot("marked.png", "af_showConstraints 1; af_showLimits 1; af_showTrees 1\n");
+    EXPECT_EQ(plain, again) << "af_showMass has no picture";
+    EXPECT_NE(plain, marked);
 }
 
 }  // namespace

@@ -112,6 +112,30 @@ struct Picture {
     Image image;
 };
 
+// The overlay (af-console's af_show* pictures) is drawn over the bodies where its points
+// project, even inside a body, and nowhere else; an empty overlay changes nothing.
+TEST(Render, OverlayMarksAreDrawnOverTheBodiesWhereTheirPointsProject) {
+    RenderScene scene;
+    scene.bodies.push_back(box(Vec3::Zero(), 20, kBlue));
+    const Picture plain(scene, frontCamera(), "overlay_none");
+    const Vec3 inside(0, 0, 0), arrowFrom(0, 30, 30), arrowTo(0, 60, 30), fanApex(0, -40, 0);
+    scene.overlay.dots.push_back({inside, kRed, 4});
+    scene.overlay.lines.push_back({arrowFrom, arrowTo, kRed, 4, true});
+    scene.overlay.polygons.push_back({{fanApex, fanApex + Vec3(0, -15, 5), fanApex + Vec3(0, -15, -5)}, kRed, 0.3});
+    scene.overlay.labels.push_back({Vec3(0, 0, 40), "neck", kRed});
+    const Picture marked(scene, frontCamera(), "overlay_marks");
+    EXPECT_TRUE(bluish(plain.of(inside)));
+    EXPECT_TRUE(reddish(marked.of(inside))) << "the dot shows through the box that holds it";
+    EXPECT_TRUE(reddish(marked.of(0.5 * (arrowFrom + arrowTo))));
+    EXPECT_FALSE(reddish(plain.of(0.5 * (arrowFrom + arrowTo))));
+    EXPECT_GT(marked.of(fanApex + Vec3(0, -10, 0)).distance(plain.of(fanApex + Vec3(0, -10, 0))), 0.05) << "the translucent fan";
+    EXPECT_LT(marked.of(fanApex + Vec3(0, -10, 0)).distance(plain.of(fanApex + Vec3(0, -10, 0))), 0.6) << "lets the scene show";
+    int changed = 0;
+    for (std::size_t i = 0; i < plain.image.pixels.size(); ++i) changed += plain.image.pixels[i].distance(marked.image.pixels[i]) > 0;
+    EXPECT_LT(changed, int(plain.image.pixels.size()) / 20) << "the marks change only their own few pixels";
+    for (auto [x, y] : {std::pair{0, 0}, {399, 0}, {0, 299}, {399, 299}}) EXPECT_EQ(marked.image.at(x, y).distance(plain.image.at(x, y)), 0);
+}
+
 TEST(Render, PngHasTheRequestedSize) {
     RenderScene scene;
     scene.bodies.push_back(box(Vec3::Zero(), 10, kRed));

@@ -4,6 +4,7 @@
 
 #include "cairo_util.h"
 #include "depth_order.h"
+#include "draw_overlay.h"
 #include "projection.h"
 
 #include <algorithm>
@@ -287,6 +288,7 @@ void drawScene(cairo_t* cr, const RenderScene& scene, const Camera& camera, doub
         const bool isStatic = static_cast<size_t>(i) >= bodyCount;
         drawPolytope(cr, proj, shapes[i], colours[i], lineScale, isStatic ? bodies : std::span<const Polytope>{});
     }
+    drawOverlay(cr, proj, scene.overlay, lineScale);
     cairo_restore(cr);
 }
 

@@ -24,12 +24,44 @@ struct RenderShape {
     std::optional<Colour> colour;  ///< none: a body takes the palette colour of its index, a static grey
 };
 
+/// Marks drawn over the shaded scene, never hidden by it (a debug view, as Doom's af_show* lines
+/// are): translucent polygons first, then lines, dots and labels, each kind in the order given.
+/// World space; widths and radii in pixels of a 480-pixel-high image, scaled with the picture.
+struct OverlayPolygon {
+    std::vector<Vec3> points;  ///< a planar convex outline
+    Colour colour;
+    double alpha = 0.3;
+};
+struct OverlayLine {
+    Vec3   from = Vec3::Zero(), to = Vec3::Zero();
+    Colour colour;
+    double width = 1.5;
+    bool   arrow = false;  ///< a head at `to`
+};
+struct OverlayDot {
+    Vec3   at = Vec3::Zero();
+    Colour colour;
+    double radius = 2.5;
+};
+struct OverlayLabel {
+    Vec3        at = Vec3::Zero();
+    std::string text;
+    Colour      colour;
+};
+struct Overlay {
+    std::vector<OverlayPolygon> polygons;
+    std::vector<OverlayLine>    lines;
+    std::vector<OverlayDot>     dots;
+    std::vector<OverlayLabel>   labels;
+};
+
 /// What one picture shows. The floor, when present, is the infinite plane z = floorZ, drawn as a
 /// checkered area around the bodies that fades out with distance.
 struct RenderScene {
     std::vector<RenderShape> bodies;
     std::vector<RenderShape> statics;  ///< world brushes: floors, steps, walls
     std::optional<Real>      floorZ;
+    Overlay                  overlay;  ///< empty for af-sim's pictures; the camera does not frame it
 };
 
 /// A perspective camera whose image "up" is as close to world +Z as the view direction allows.

@@ -78,6 +78,11 @@ public:
     const Polytope& bodyShape(int body) const { return bodies_[static_cast<std::size_t>(body)].shape.polytope(); }
     const CollisionFilter& filter(int body) const { return bodies_[static_cast<std::size_t>(body)].filter; }
     const CollisionSettings& settings() const { return settings_; }
+    // New rules for which pairs may touch; changes version().
+    void setSettings(const CollisionSettings& settings) {
+        settings_ = settings;
+        ++version_;
+    }
 
     // Whether a and b may touch at all (the rules above), and a body and the static world.
     bool mayCollide(int a, int b) const;

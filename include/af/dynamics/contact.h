@@ -14,6 +14,7 @@ struct ContactSettings {
     // four points under a box are one more than its three contact freedoms, and without some
     // softness that redundancy makes the exact solver's system singular.
     Real relativeCfm = 1e-9;
+    bool friction = true;  // false: normal rows only (Doom's af_skipFriction)
 };
 
 }  // namespace af

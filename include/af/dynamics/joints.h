@@ -139,6 +139,13 @@ struct JointRowSettings {
     Real frictionCfm = kFrictionRelativeCfm;
     Real limitMargin = kLimitMarginRadians;
     Real springLimitMargin = kSpringLimitMargin;
+    // Doom's af_skipLimits, af_skipFriction and af_forceFriction (docs/doom-physics.md §4.13), for
+    // judging a figure: without limits a joint moves freely within its kind; without friction a
+    // joint writes no friction rows; a forced friction (> 0) replaces every joint's own coefficient.
+    bool limits = true;
+    bool friction = true;
+    Real forcedFriction = 0;
+    friend bool operator==(const JointRowSettings&, const JointRowSettings&) = default;
 };
 
 // Doom's spring force (docs/doom-physics.md §4.3), quadratic in the displacement, added to the bodies'

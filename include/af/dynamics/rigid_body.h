@@ -65,7 +65,7 @@ struct IntegrationSettings {
     // Doom's per-step caps (128 units and 1.57 rad per 1/60 s step), as rates, so that they mean
     // the same at any step. (Doom's real step is 16 ms, where its caps are 8000 units/s and
     // 98.1 rad/s; these are the values of an exact 60 Hz step.) A cap that is NaN or +∞ does
-    // nothing; a negative cap acts as 0.
+    // nothing; a negative cap acts as 0 (a World refuses both NaN and negative caps).
     Real maxLinearSpeed = 128 * 60;   // units/s
     Real maxAngularSpeed = 1.57 * 60; // rad/s
     // Keep the gyroscopic term (ω × Iω) and integrate it implicitly, so a free spinning body

@@ -227,6 +227,11 @@ public:
     void addForce(int body, const Vec3& worldPoint, const Vec3& force);
 
     const WorldSettings& settings() const;
+    // New settings from the next step on (the console's af_* cvars): gravity, time step, limits,
+    // friction, caps, collision rules, … Every figure wakes. A non-finite or out-of-range value is
+    // refused (std::invalid_argument) and the world is left as it was; the constructor refuses
+    // such settings alike.
+    void setSettings(const WorldSettings& settings);
     Real time() const;
     const StepReport& lastStep() const;
     int solverFailures() const;  // over all steps

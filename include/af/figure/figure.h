@@ -120,6 +120,14 @@ FigureResult buildFigure(const AFResources& resources);
 // it gives the figure built at that placement, to rounding.
 Figure placeFigure(const Figure& figure, const RigidPose& placement);
 
+// The lowest and highest z of the figure's shapes moved by `placement`: how far to lift a figure so
+// that it stands on a floor, and where the next of a pile goes.
+struct HeightRange {
+    Real lowest = 0;
+    Real highest = 0;
+};
+HeightRange heightRange(const Figure& figure, const RigidPose& placement = {});
+
 // The groups of bodies joined by constraints (to the world or not), each in body order; a
 // well-formed figure is one tree. Groups are ordered by their first body.
 std::vector<std::vector<int>> bodyTrees(const Figure& figure);

@@ -8,6 +8,8 @@
 #include "af/geometry/math.h"
 
 #include <array>
+#include <optional>
+#include <span>
 #include <vector>
 
 namespace af {
@@ -52,5 +54,9 @@ Polytope transformed(const Polytope& polytope, const Mat3& rotation, const Vec3&
 
 /// The polytope moved by `translation`.
 Polytope translated(const Polytope& polytope, const Vec3& translation);
+
+// The top of the highest shape whose extent in x and y covers (x, y) (boxes, not exact outlines):
+// the ground under a figure dropped there on a map of axis-aligned brushes; none when no shape is.
+std::optional<Real> highestTopAt(std::span<const Polytope> shapes, Real x, Real y);
 
 }  // namespace af
