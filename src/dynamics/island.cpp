@@ -88,7 +88,8 @@ void Island::applyImpulses() {
 }
 
 // The extra source sees the world's bodies (with this island's current poses written back);
-// its rows that touch this island are kept, renumbered.
+// its rows that touch this island are kept, renumbered. localOf_ gives a body's index in its own
+// island, whichever that is: a row's body belongs to this one only where that index names it here.
 void Island::writeRows(IslandContext& context, bool atStepStart) {
     farPointsApart_ = false;  // a projection pass may move the bodies next
     rows_.clear();
@@ -122,10 +123,17 @@ void Island::writeRows(IslandContext& context, bool atStepStart) {
     extra_.clear();
     context.extraRows(context.worldBodies, extra_);
     extraIndex_.assign(extra_.size(), -1);
+    const auto localHere = [this](int body) {
+        const int local = renumber(body, localOf_);
+        return local == kWorldBody || (local >= 0 && static_cast<std::size_t>(local) < bodyIds_.size() &&
+                                       bodyIds_[static_cast<std::size_t>(local)] == body)
+                   ? local
+                   : kOutsideIsland;
+    };
     for (std::size_t r = 0; r < extra_.size(); ++r) {
         ConstraintRow row = extra_[r];
-        const int a = renumber(row.bodyA, localOf_);
-        const int b = renumber(row.bodyB, localOf_);
+        const int a = localHere(row.bodyA);
+        const int b = localHere(row.bodyB);
         if ((a < 0 && b < 0) || a == kOutsideIsland || b == kOutsideIsland) continue;
         row.bodyA = a;
         row.bodyB = b;
