@@ -3,7 +3,8 @@
 // constraints and mass.
 //
 // Exit status: 0 when every file (or the figure) loads, 1 when anything has an error, 2 for bad
-// usage. Warnings do not change the status.
+// usage. Warnings do not change the status, except with --strict, which makes every warning an
+// error: a lint for files that should load in Doom 3 itself without a word.
 
 #include "af/text/af_parser.h"
 #include "af/text/af_writer.h"
@@ -25,40 +26,59 @@ struct Options {
     std::string figure;
     std::string entity;
     std::vector<std::string> roots;
+    bool strict = false;
 };
 
-std::string summary(const af::AFParseResult& r) {
-    std::string out = r.file.path + ": " + (r.ok() ? "ok" : "FAILED");
+// The diagnostics as this run reports them: with --strict every warning is an error.
+std::vector<af::Diagnostic> asReported(std::vector<af::Diagnostic> diagnostics, bool strict) {
+    if (strict)
+        for (af::Diagnostic& d : diagnostics) d.severity = af::Severity::Error;
+    return diagnostics;
+}
+
+bool anyError(const std::vector<af::Diagnostic>& diagnostics) {
+    for (const af::Diagnostic& d : diagnostics)
+        if (d.severity == af::Severity::Error) return true;
+    return false;
+}
+
+std::string summary(const af::AFParseResult& r, const std::vector<af::Diagnostic>& diagnostics) {
+    std::size_t errors = 0;
+    for (const af::Diagnostic& d : diagnostics) errors += d.severity == af::Severity::Error;
+    const std::size_t warnings = diagnostics.size() - errors;
+    std::string out = r.file.path + ": " + (errors == 0 ? "ok" : "FAILED");
     for (const af::DeclAF& d : r.file.decls)
         out += ", " + d.name + " (" + std::to_string(d.bodies.size()) + " bodies, " +
                std::to_string(d.constraints.size()) + " constraints)";
-    if (r.diagnostics.errorCount()) out += ", " + std::to_string(r.diagnostics.errorCount()) + " error(s)";
-    if (r.diagnostics.warningCount()) out += ", " + std::to_string(r.diagnostics.warningCount()) + " warning(s)";
+    if (errors) out += ", " + std::to_string(errors) + " error(s)";
+    if (warnings) out += ", " + std::to_string(warnings) + " warning(s)";
     return out;
 }
 
-nlohmann::ordered_json record(const af::AFParseResult& r) {
+nlohmann::ordered_json record(const af::AFParseResult& r, const std::vector<af::Diagnostic>& reported) {
     nlohmann::ordered_json decls = nlohmann::ordered_json::array();
     for (const af::DeclAF& d : r.file.decls) decls.push_back(af::toJson(d));
     nlohmann::ordered_json diagnostics = nlohmann::ordered_json::array();
-    for (const af::Diagnostic& d : r.diagnostics.all()) diagnostics.push_back(af::toJson(d));
-    return {{"file", r.file.path}, {"ok", r.ok()}, {"decls", decls}, {"diagnostics", diagnostics}};
+    for (const af::Diagnostic& d : reported) diagnostics.push_back(af::toJson(d));
+    return {{"file", r.file.path}, {"ok", !anyError(reported)}, {"decls", decls}, {"diagnostics", diagnostics}};
 }
 
 int checkFiles(const Options& options) {
     bool allOk = true;
     for (const std::string& path : options.files) {
         const af::AFParseResult result = af::loadAFFile(path);
-        allOk = allOk && result.ok();
+        const std::vector<af::Diagnostic> reported = asReported(result.diagnostics.all(), options.strict);
+        const bool ok = !anyError(reported);
+        allOk = allOk && ok;
         if (options.json) {
-            std::cout << record(result).dump() << '\n';
+            std::cout << record(result, reported).dump() << '\n';
             continue;
         }
-        std::cerr << result.diagnostics.formatAll();
+        for (const af::Diagnostic& d : reported) std::cerr << d.format() << '\n';
         if (options.format) {
-            if (result.ok()) std::cout << af::writeAFFile(result.file);
+            if (ok) std::cout << af::writeAFFile(result.file);
         } else {
-            std::cout << summary(result) << '\n';
+            std::cout << summary(result, reported) << '\n';
         }
     }
     return allOk ? 0 : 1;
@@ -83,7 +103,8 @@ int checkFigure(const Options& options) {
         built = af::buildFigure(resources);
         diagnostics.insert(diagnostics.end(), built->diagnostics.begin(), built->diagnostics.end());
     }
-    const af::Figure* figure = built && built->ok() ? &*built->figure : nullptr;
+    diagnostics = asReported(std::move(diagnostics), options.strict);
+    const af::Figure* figure = built && built->ok() && !anyError(diagnostics) ? &*built->figure : nullptr;
     if (options.json) {
         std::cout << af::figureReportJson(figure, resources, diagnostics).dump() << '\n';
     } else {
@@ -98,7 +119,8 @@ int checkFigure(const Options& options) {
 int main(int argc, char** argv) {
     Options options;
     CLI::App app{"Checks Doom 3-style articulated figure (.af) files: every problem is reported as "
-                 "file:line:col. Exit status 0 when all files load, 1 when any has an error, 2 for bad usage."};
+                 "file:line:col. Exit status 0 when all files load, 1 when any has an error (or, with --strict, a "
+                 "warning), 2 for bad usage."};
     app.add_option("files", options.files, ".af files to check");
     auto* format = app.add_flag("--format", options.format,
                                 "print each file in the canonical layout of the Doom 3 AF editor");
@@ -110,6 +132,9 @@ int main(int argc, char** argv) {
     app.add_option("--root", options.roots,
                    "a mod folder laid out like Doom's base/ (af/, def/, models/); repeat for more, "
                    "later ones override earlier ones (default: the af data folder of this build)");
+    app.add_flag("--strict", options.strict,
+                 "treat every warning as an error (exit status 1): for files that should load in Doom 3 "
+                 "without a word");
     format->excludes(figure)->excludes(entity);
     try {
         app.parse(argc, argv);

@@ -5,6 +5,13 @@
 
 namespace af {
 
+namespace {
+
+// Anchors closer than this (units) are one point: far below any modelled length.
+constexpr Real kCoincidentAnchors = 1e-6;
+
+}  // namespace
+
 void buildConstraints(FigureBuildContext& context, Figure& figure) {
     for (const AFConstraint& c : context.decl.constraints) {
         const std::string label = std::string(toString(c.type)) + " \"" + c.name + "\"";
@@ -42,6 +49,12 @@ void buildConstraints(FigureBuildContext& context, Figure& figure) {
         case ConstraintType::Spring:
             out.anchor = context.worldPoint(c.anchor);
             out.anchor2 = context.worldPoint(c.anchor2);
+            // Doom 3 loads it, and the spring works once the bodies move, but until then it has no
+            // direction to pull along: suspicious rather than broken (docs/figures.md §3.8).
+            if ((out.anchor2 - out.anchor).norm() <= kCoincidentAnchors)
+                context.diagnostics.warning(c.anchor2.where.line ? c.anchor2.where : c.where,
+                                            label + ": anchor1 and anchor2 coincide at spawn, so the spring has "
+                                                    "no direction until its bodies move apart");
             out.stretch = c.stretch;
             out.compress = c.compress;
             out.damping = c.damping;

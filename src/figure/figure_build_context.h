@@ -2,6 +2,7 @@
 // Shared state of one buildFigure call: the skeleton, the placement and the diagnostics.
 
 #include "af/figure/figure.h"
+#include "af/geometry/mass_properties.h"
 
 #include <string>
 
@@ -25,6 +26,11 @@ private:
 };
 
 void buildBodies(FigureBuildContext& context, Figure& figure);
+// The load-time guards (docs/figures.md §3.4.1). guardShape: a shape without volume or a body
+// without mass is an error, an absurd density a warning. guardInertia, on the final mass and
+// inertia (after inertiaScale and totalMass): not finite, not positive, or singular is an error.
+void guardShape(FigureBuildContext& context, const AFBody& body, const Polytope& shape, MassStatus status);
+void guardInertia(FigureBuildContext& context, const AFBody& body, Real mass, const Mat3& inertia);
 void buildConstraints(FigureBuildContext& context, Figure& figure);
 void claimJoints(FigureBuildContext& context, Figure& figure);
 // The warnings about figures that tend to misbehave (mass and inertia ratios, overlap, trees).

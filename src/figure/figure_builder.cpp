@@ -60,7 +60,7 @@ Vec3 FigureBuildContext::worldDirection(const AFVector& v, const std::string& wh
     const Vec3 d = placement.rotation * resolve(v);
     const Real length = d.norm();
     if (!(length > 1e-9)) {
-        diagnostics.error(v.where, what + " is a zero vector on this skeleton");
+        diagnostics.error(v.where, what + " is a zero vector on this skeleton, so the joint cannot be simulated");
         return Vec3::UnitZ();
     }
     return d / length;
@@ -68,6 +68,7 @@ Vec3 FigureBuildContext::worldDirection(const AFVector& v, const std::string& wh
 
 void buildBodies(FigureBuildContext& context, Figure& figure) {
     std::vector<MassProperties> masses;
+    std::vector<const AFBody*> declBody;  // of each figure body: custom ones are skipped
     for (const AFBody& b : context.decl.bodies) {
         const std::string label = "body \"" + b.name + "\"";
         if (b.shape.type == ShapeType::Custom) {
@@ -84,14 +85,16 @@ void buildBodies(FigureBuildContext& context, Figure& figure) {
         spec.origin = context.resolve(b.origin);
         spec.angles = Vec3(b.angles[0], b.angles[1], b.angles[2]);
         const BodyShape built = buildShape(spec);
-        for (const std::string& w : built.warnings) context.diagnostics.warning(b.where, label + ": " + w);
+        const SourceLocation shapeWhere = b.shape.where.line ? b.shape.where : b.where;
+        for (const std::string& w : built.warnings) context.diagnostics.warning(shapeWhere, label + ": " + w);
+        // Doom's trace model raises too few sides to its minimum and says so; so do we.
+        if ((spec.kind == ShapeKind::cylinder || spec.kind == ShapeKind::cone) && built.sides > spec.sides)
+            context.diagnostics.warning(shapeWhere, label + ": " + toString(b.shape.type) + " has " +
+                                                        std::to_string(spec.sides) + " sides; " +
+                                                        std::to_string(built.sides) + " are used, as in Doom 3");
 
         MassProperties mp = massProperties(built.local, b.density);
-        if (mp.status != MassStatus::ok)
-            context.diagnostics.warning(b.where, label + (mp.status == MassStatus::zeroVolume
-                                                              ? ": the shape has no volume"
-                                                              : ": the mass is not positive") +
-                                                     "; mass 1 and unit inertia are used, as in Doom 3");
+        guardShape(context, b, built.local, mp.status);
         const Mat3 scale = Eigen::Map<const Eigen::Matrix<Real, 3, 3, Eigen::RowMajor>>(b.inertiaScale.data());
         mp.inertia = applyInertiaScale(mp.inertia, scale);
         const BodyShape centred = recentred(built, mp.centreOfMass);
@@ -128,11 +131,13 @@ void buildBodies(FigureBuildContext& context, Figure& figure) {
         body.where = b.where;
         figure.bodies.push_back(std::move(body));
         masses.push_back(mp);
+        declBody.push_back(&b);
     }
     const Real scale = totalMassScale(masses, context.decl.settings.totalMass);
     for (std::size_t i = 0; i < figure.bodies.size(); ++i) {
         figure.bodies[i].mass = masses[i].mass * scale;
         figure.bodies[i].inertia = masses[i].inertia * scale;
+        guardInertia(context, *declBody[i], figure.bodies[i].mass, figure.bodies[i].inertia);
     }
 }
 

@@ -18,6 +18,8 @@ void AFParser::parseBody(DeclAF& decl) {
     body.contactFriction = current_.contactFriction;
     body.contents = current_.contents;
     body.clipMask = current_.clipMask;
+    body.unknownContents = current_.unknownContents;
+    body.unknownClipMask = current_.unknownClipMask;
     body.selfCollision = current_.selfCollision;
     if (equalsIgnoreCase(body.name, "world") || equalsIgnoreCase(body.name, "origin"))
         diagnostics().error(name.where, "a body may not be named '" + body.name +
@@ -47,9 +49,10 @@ void AFParser::parseBodyKey(AFBody& body, const Token& key) {
         if (mod.isKeyword("orientation")) body.mod = JointMod::Orientation;
         else if (mod.isKeyword("position")) body.mod = JointMod::Position;
         else if (mod.isKeyword("both")) body.mod = JointMod::Both;
-        else if (mod.type == TokenType::Name || mod.type == TokenType::String) {
+        else if (mod.type != TokenType::Punctuation && mod.type != TokenType::End && mod.type != TokenType::Invalid) {
+            // Doom takes any token here; a number or a quoted word means orientation too.
             body.mod = JointMod::Orientation;
-            diagnostics().warning(mod.where, "unknown mod '" + std::string(mod.text) +
+            diagnostics().warning(mod.where, "unknown mod '" + printableExcerpt(mod.text) +
                                                  "' (orientation, position or both); orientation is used, as in Doom 3");
         } else {
             in_.fail(mod, "orientation, position or both after mod");
@@ -60,30 +63,33 @@ void AFParser::parseBodyKey(AFBody& body, const Token& key) {
         body.origin = parseVector("the body origin");
     } else if (key.isKeyword("angles")) {
         const AFVector angles = parseVector("angles");
+        // Doom reads angles before any vector is resolved: a symbolic form counts as zero.
         if (angles.kind != AFVector::Kind::Coordinates)
-            diagnostics().error(angles.where, "angles must be written ( pitch, yaw, roll ) in degrees");
-        if (angles.negated)
+            diagnostics().warning(angles.where, "angles written as joint(), bonecenter() or bonedir() read as "
+                                                "( 0, 0, 0 ), as in Doom 3; write ( pitch, yaw, roll ) in degrees");
+        else if (angles.negated)
             diagnostics().warning(angles.where, "a '-' before angles is ignored, as in Doom 3");
         body.angles = angles.coordinates;
     } else if (key.isKeyword("density")) {
-        SourceLocation where;
-        body.density = in_.readFloat("density", &where);
+        body.density = in_.readFloat("density", &body.densityWhere);
         if (body.density <= 0)
-            diagnostics().error(where, "density must be greater than 0, found " + formatDeclFloat(body.density));
+            diagnostics().error(body.densityWhere, "density must be greater than 0, found " + formatDeclFloat(body.density) +
+                                                      " (a body without mass cannot be simulated)");
     } else if (key.isKeyword("inertiaScale")) {
+        body.inertiaScaleWhere = in_.peek().where;
         in_.expectPunctuation("(", "before the nine inertiaScale values");
         for (Real& v : body.inertiaScale) v = in_.readFloat("inertiaScale");
         in_.expectPunctuation(")", "after the nine inertiaScale values (they take no commas)");
     } else if (key.isKeyword("friction")) {
-        body.linearFriction = readNonNegative("linear friction");
+        body.linearFriction = readNonNegative("linear friction", kDoomIgnoresFriction);
         in_.expectPunctuation(",", "after the linear friction");
-        body.angularFriction = readNonNegative("angular friction");
+        body.angularFriction = readNonNegative("angular friction", kDoomIgnoresFriction);
         in_.expectPunctuation(",", "after the angular friction");
-        body.contactFriction = readNonNegative("contact friction");
+        body.contactFriction = readNonNegative("contact friction", kDoomIgnoresFriction);
     } else if (key.isKeyword("contents")) {
-        body.contents = parseContents("contents");
+        body.contents = parseContents("contents", body.unknownContents);
     } else if (key.isKeyword("clipMask")) {
-        body.clipMask = parseContents("clipMask");
+        body.clipMask = parseContents("clipMask", body.unknownClipMask);
     } else if (key.isKeyword("selfCollision")) {
         body.selfCollision = in_.readBool("selfCollision");
     } else if (key.isKeyword("containedJoints")) {
@@ -101,6 +107,7 @@ void AFParser::parseBodyKey(AFBody& body, const Token& key) {
 AFShape AFParser::parseShape() {
     AFShape shape;
     const Token word = in_.next();
+    shape.where = word.where;
     if (word.isKeyword("box")) shape.type = ShapeType::Box;
     else if (word.isKeyword("octahedron")) shape.type = ShapeType::Octahedron;
     else if (word.isKeyword("dodecahedron")) shape.type = ShapeType::Dodecahedron;
@@ -129,7 +136,8 @@ AFShape AFParser::parseShape() {
         SourceLocation where;
         shape.width = in_.readFloat("the bone width", &where);
         if (shape.width <= 0)
-            diagnostics().error(where, "the bone width must be greater than 0, found " + formatDeclFloat(shape.width));
+            diagnostics().error(where, "the bone width must be greater than 0, found " + formatDeclFloat(shape.width) +
+                                          " (a bone without volume cannot be simulated)");
     }
     in_.expectPunctuation(")", "after the shape arguments");
     return shape;

@@ -75,7 +75,8 @@ unsigned AFParser::parseConstraintKey(AFConstraint& c, const Token& key) {
         const Real a = in_.readFloat(what, &where);
         if (a < 0 || a > 360)
             diagnostics().error(where, std::string(what) + " must be between 0 and 360 degrees, found " +
-                                           formatDeclFloat(a));
+                                           formatDeclFloat(a) + " (a limit beyond a full turn means nothing and "
+                                                                "cannot be simulated)");
         return a;
     };
 
@@ -88,7 +89,7 @@ unsigned AFParser::parseConstraintKey(AFConstraint& c, const Token& key) {
         c.body2 = b.text;
         c.body2Where = b.where;
     } else if (type != ConstraintType::Fixed && key.isKeyword("friction")) {
-        c.friction = readNonNegative("friction");
+        c.friction = readNonNegative("friction", kFrictionFeedsEnergy);
     } else if (anchored && key.isKeyword("anchor")) {
         c.anchor = parseVector("the anchor");
     } else if ((type == ConstraintType::Hinge || type == ConstraintType::Slider) && key.isKeyword("axis")) {
@@ -136,7 +137,7 @@ unsigned AFParser::parseConstraintKey(AFConstraint& c, const Token& key) {
         Real* const values[] = {&c.stretch, &c.compress, &c.damping, &c.restLength, &c.minLength, &c.maxLength};
         for (unsigned i = 0; i < std::size(kSpringKeys); ++i) {
             if (!key.isKeyword(kSpringKeys[i])) continue;
-            *values[i] = readNonNegative(kSpringKeys[i]);
+            *values[i] = readNonNegative(kSpringKeys[i], "a negative spring value cannot be simulated");
             return 1u << i;
         }
         in_.fail(key, std::string("a spring key (") + keysOf(type) + ") or '}'");

@@ -2,6 +2,7 @@
 
 #include "af/text/strings.h"
 #include "af_parser_impl.h"
+#include "decl_types.h"
 #include "text_file.h"
 #include "af/text/contents.h"
 #include "af/text/number_format.h"
@@ -49,11 +50,24 @@ void AFParser::parseFile(AFFile& file) {
 
 void AFParser::parseDecl(AFFile& file) {
     Token name = in_.next();
-    if (name.isKeyword("articulatedFigure")) name = in_.next();
+    if (name.isKeyword("articulatedFigure")) {
+        name = in_.next();
+    } else if (name.type == TokenType::Name && isDoomDeclType(name.text) && !in_.peek().isPunctuation("{")) {
+        // Doom reads any decl type in any decl file; another type's decl is not a figure, so it
+        // is skipped whole (and not written back), with a word.
+        in_.next();  // its name
+        const int depth = in_.braceDepth();
+        in_.expectPunctuation("{", "after the decl name");
+        diagnostics().warning(name.where, "a decl of type " + printableExcerpt(name.text) +
+                                              " in an .af file is skipped (Doom 3 reads it as one) and not "
+                                              "written back");
+        in_.skipToDepth(depth);
+        return;
+    }
     if (name.type != TokenType::Name && name.type != TokenType::String) {
         if (name.isPunctuation("{")) {
-            // A braced section without a name: say so and skip it whole.
-            diagnostics().error(name.where, "expected a decl name before '{', found '{'");
+            // A braced section without a name: Doom 3 warns and skips it whole, and so do we.
+            diagnostics().warning(name.where, "a braced section without a decl name is skipped, as in Doom 3");
             in_.skipToDepth(in_.braceDepth() - 1);
             return;
         }
@@ -106,28 +120,28 @@ void AFParser::parseSettings(AFSettings& s) {
             diagnostics().warning(key.where, "'" + std::string(key.text) +
                                                  "' in settings is ignored (as in Doom 3) and not written back");
         } else if (key.isKeyword("friction")) {
-            s.linearFriction = readNonNegative("linear friction");
+            s.linearFriction = readNonNegative("linear friction", kDoomIgnoresFriction);
             in_.expectPunctuation(",", "after the linear friction");
-            s.angularFriction = readNonNegative("angular friction");
+            s.angularFriction = readNonNegative("angular friction", kDoomIgnoresFriction);
             in_.expectPunctuation(",", "after the angular friction");
-            s.contactFriction = readNonNegative("contact friction");
-            if (in_.acceptPunctuation(",")) s.constraintFriction = readNonNegative("constraint friction");
+            s.contactFriction = readNonNegative("contact friction", kDoomIgnoresFriction);
+            if (in_.acceptPunctuation(",")) s.constraintFriction = readWarnedIfNegative("constraint friction", kSeedsEditorOnly);
         } else if (key.isKeyword("suspendSpeed")) {
-            s.suspendLinearVelocity = readNonNegative("the linear suspend velocity");
+            s.suspendLinearVelocity = readWarnedIfNegative("the linear suspend velocity", kNeverBelow);
             in_.expectPunctuation(",", "after the linear suspend velocity");
-            s.suspendAngularVelocity = readNonNegative("the angular suspend velocity");
+            s.suspendAngularVelocity = readWarnedIfNegative("the angular suspend velocity", kNeverBelow);
             in_.expectPunctuation(",", "after the angular suspend velocity");
-            s.suspendLinearAcceleration = readNonNegative("the linear suspend acceleration");
+            s.suspendLinearAcceleration = readWarnedIfNegative("the linear suspend acceleration", kNeverBelow);
             in_.expectPunctuation(",", "after the linear suspend acceleration");
-            s.suspendAngularAcceleration = readNonNegative("the angular suspend acceleration");
-        } else if (key.isKeyword("noMoveTime")) s.noMoveTime = readNonNegative("noMoveTime");
-        else if (key.isKeyword("noMoveTranslation")) s.noMoveTranslation = readNonNegative("noMoveTranslation");
-        else if (key.isKeyword("noMoveRotation")) s.noMoveRotation = readNonNegative("noMoveRotation");
+            s.suspendAngularAcceleration = readWarnedIfNegative("the angular suspend acceleration", kNeverBelow);
+        } else if (key.isKeyword("noMoveTime")) s.noMoveTime = readWarnedIfNegative("noMoveTime", kNoWindow);
+        else if (key.isKeyword("noMoveTranslation")) s.noMoveTranslation = readWarnedIfNegative("noMoveTranslation", kNeverStill);
+        else if (key.isKeyword("noMoveRotation")) s.noMoveRotation = readWarnedIfNegative("noMoveRotation", kNeverStill);
         else if (key.isKeyword("minMoveTime")) s.minMoveTime = in_.readFloat("minMoveTime");
         else if (key.isKeyword("maxMoveTime")) s.maxMoveTime = in_.readFloat("maxMoveTime");
         else if (key.isKeyword("totalMass")) s.totalMass = in_.readFloat("totalMass");
-        else if (key.isKeyword("contents")) s.contents = parseContents("contents");
-        else if (key.isKeyword("clipMask")) s.clipMask = parseContents("clipMask");
+        else if (key.isKeyword("contents")) s.contents = parseContents("contents", s.unknownContents);
+        else if (key.isKeyword("clipMask")) s.clipMask = parseContents("clipMask", s.unknownClipMask);
         else if (key.isKeyword("selfCollision")) s.selfCollision = in_.readBool("selfCollision");
         else if (key.isKeyword("fastEval")) {
             s.extensions.fastEval = true;
@@ -140,11 +154,21 @@ void AFParser::parseSettings(AFSettings& s) {
     }
 }
 
-Real AFParser::readNonNegative(std::string_view what) {
+Real AFParser::readNonNegative(std::string_view what, std::string_view why) {
     SourceLocation where;
     const Real value = in_.readFloat(what, &where);
     if (value < 0)
-        diagnostics().error(where, std::string(what) + " must not be negative, found " + formatDeclFloat(value));
+        diagnostics().error(where, std::string(what) + " must not be negative, found " + formatDeclFloat(value) +
+                                       " (" + std::string(why) + ")");
+    return value;
+}
+
+Real AFParser::readWarnedIfNegative(std::string_view what, std::string_view effect) {
+    SourceLocation where;
+    const Real value = in_.readFloat(what, &where);
+    if (value < 0)
+        diagnostics().warning(where, std::string(what) + " is negative, found " + formatDeclFloat(value) +
+                                         "; Doom 3 loads it, and so do we: " + std::string(effect));
     return value;
 }
 
@@ -183,16 +207,26 @@ AFVector AFParser::parseVector(std::string_view what) {
     in_.fail(t, std::string(what) + " as ( x, y, z ), joint( \"J\" ), bonecenter( \"A\", \"B\" ) or bonedir( \"A\", \"B\" )");
 }
 
-ContentsMask AFParser::parseContents(std::string_view what) {
+// A list replaces the one before it, so the unknown names of an earlier list go too.
+ContentsMask AFParser::parseContents(std::string_view what, std::vector<std::string>& unknown) {
     ContentsMask mask = 0;
+    unknown.clear();
     do {
         const Token t = in_.next();
         if (t.type != TokenType::Name) in_.fail(t, "a " + std::string(what) + " name (" + contentsNameList() + ")");
         const std::optional<ContentsMask> bit = contentsBitFromName(t.text);
-        if (!bit) in_.fail(t, "a " + std::string(what) + " name (" + contentsNameList() + ")");
+        if (!bit) {
+            // Doom 3 ends the list at a name it does not know and loads the figure; later games
+            // name bits of their own here. Kept for the writer, with no effect (§1.9).
+            diagnostics().warning(t.where, "unknown " + std::string(what) + " name '" + printableExcerpt(t.text) +
+                                               "' (a later game's?); kept and written back, no effect here");
+            unknown.emplace_back(t.text);
+            continue;
+        }
         if (!isDoom3AfContentsName(t.text))
             diagnostics().warning(t.where, "'" + std::string(t.text) + "' is not a " + std::string(what) +
                                                " name Doom 3's AF parser knows; kept");
+        if (*bit == 0) unknown.clear();
         mask = *bit == 0 ? 0 : (mask | *bit);
     } while (in_.acceptPunctuation(","));
     return mask;

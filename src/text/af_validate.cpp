@@ -44,12 +44,12 @@ void checkBodyReferences(const DeclAF& decl, const AFConstraint& c, Diagnostics&
                                               "\" is not a body of this figure; it is attached to the world, as in "
                                               "Doom 3");
     }
-    if (body1Valid && c.body1 == c.body2) diagnostics.error(c.body1Where, label + " joins body \"" + c.body1 + "\" to itself");
+    if (body1Valid && c.body1 == c.body2) diagnostics.error(c.body1Where, label + " joins body \"" + c.body1 + "\" to itself (such a joint cannot be simulated)");
 }
 
 void checkNonZero(const AFVector& v, const std::string& what, SourceLocation fallback, Diagnostics& diagnostics) {
     if (v.isZeroLiteral())
-        diagnostics.error(v.where.line ? v.where : fallback, what + " must not be zero");
+        diagnostics.error(v.where.line ? v.where : fallback, what + " must not be zero (the joint cannot be simulated)");
 }
 
 void checkConstraintValues(const AFConstraint& c, Diagnostics& diagnostics) {
@@ -69,7 +69,8 @@ void checkConstraintValues(const AFConstraint& c, Diagnostics& diagnostics) {
     case ConstraintType::Spring:
         if (c.minLength > c.maxLength)
             diagnostics.error(c.where, label + ": minLength " + formatDeclFloat(c.minLength) +
-                                           " is greater than maxLength " + formatDeclFloat(c.maxLength));
+                                           " is greater than maxLength " + formatDeclFloat(c.maxLength) +
+                                           " (no length satisfies both, so the spring cannot be simulated)");
         break;
     case ConstraintType::Fixed: break;
     }

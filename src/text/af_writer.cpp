@@ -44,8 +44,8 @@ public:
         key("minMoveTime").num(s.minMoveTime).end();
         key("maxMoveTime").num(s.maxMoveTime).end();
         key("totalMass").num(s.totalMass).end();
-        key("contents").raw(contentsToString(s.contents)).end();
-        key("clipMask").raw(contentsToString(s.clipMask)).end();
+        key("contents").raw(contentsToString(s.contents, s.unknownContents)).end();
+        key("clipMask").raw(contentsToString(s.clipMask, s.unknownClipMask)).end();
         key("selfCollision").integer(s.selfCollision ? 1 : 0).end();
         if (s.extensions.fastEval) raw("\tfastEval\n");
         raw("}\n");
@@ -79,8 +79,8 @@ public:
             raw(")").end();
         }
         key("friction").num(b.linearFriction).raw(", ").num(b.angularFriction).raw(", ").num(b.contactFriction).end();
-        key("contents").raw(contentsToString(b.contents)).end();
-        key("clipMask").raw(contentsToString(b.clipMask & ~contents::MoveableClip)).end();
+        key("contents").raw(contentsToString(b.contents, b.unknownContents)).end();
+        key("clipMask").raw(contentsToString(b.clipMask & ~contents::MoveableClip, b.unknownClipMask)).end();
         key("selfCollision").integer(b.selfCollision ? 1 : 0).end();
         if (b.frictionDirection) key("frictionDirection").vec(*b.frictionDirection).end();
         if (b.contactMotorDirection) key("contactMotorDirection").vec(*b.contactMotorDirection).end();

@@ -53,6 +53,15 @@ std::string contentsToString(ContentsMask mask) {
     return out.empty() ? std::string("none") : out;
 }
 
+std::string contentsToString(ContentsMask mask, const std::vector<std::string>& unknown) {
+    std::string out = mask == 0 && !unknown.empty() ? std::string() : contentsToString(mask);
+    for (const std::string& name : unknown) {
+        if (!out.empty()) out += ", ";
+        out += name;
+    }
+    return out;
+}
+
 std::string contentsNameList() {
     std::string out = "none";
     for (const ContentsName& n : kNames) {

@@ -3,6 +3,7 @@
 
 #include "af/text/decl_def.h"
 #include "af/text/strings.h"
+#include "decl_types.h"
 #include "text_file.h"
 #include "token_reader.h"
 
@@ -12,18 +13,9 @@ namespace af {
 
 namespace {
 
-// Doom 3's registered decl types (DeclManager.cpp and the game's). They matter only to tell
-// `TYPE {` (a missing name) from `NAME {` (an entityDef, the def/ folder's default type).
-constexpr std::array<std::string_view, 15> kDeclTypes = {
-    "table", "material", "skin", "sound", "entityDef", "mapDef", "fx", "particle", "articulatedFigure",
-    "pda", "video", "audio", "email", "model", "export"};
-
-bool isDeclType(const Token& t) {
-    if (t.type != TokenType::Name) return false;
-    for (std::string_view type : kDeclTypes)
-        if (equalsIgnoreCase(t.text, type)) return true;
-    return false;
-}
+// The decl types matter here only to tell `TYPE {` (a missing name) from `NAME {` (an
+// entityDef, the def/ folder's default type).
+bool isDeclType(const Token& t) { return t.type == TokenType::Name && isDoomDeclType(t.text); }
 
 DefKeyValue* findKey(EntityDef& def, std::string_view key) {
     for (DefKeyValue& kv : def.keyValues)
@@ -104,11 +96,11 @@ private:
             name = in_.next();
         }
         if (name.isPunctuation("{")) {
-            diagnostics().warning(name.where, "'" + type + "' without a decl name; the braced section is skipped");
+            diagnostics().warning(name.where, "'" + printableExcerpt(type) + "' without a decl name; the braced section is skipped");
             skipBlock(depth, name, "the braced section");
             return;
         }
-        if (!isWord(name)) in_.fail(name, "a decl name after '" + type + "'");
+        if (!isWord(name)) in_.fail(name, "a decl name after '" + printableExcerpt(type) + "'");
         const Token open = in_.next();
         if (!open.isPunctuation("{")) in_.fail(open, "'{' after the decl name");
 
@@ -117,7 +109,7 @@ private:
         } else if (equalsIgnoreCase(type, "model")) {
             parseModel(file, name, depth);
         } else {
-            skipBlock(depth, open, type + " '" + std::string(name.text) + "'");
+            skipBlock(depth, open, printableExcerpt(type) + " '" + printableExcerpt(name.text) + "'");
             file.skipped.push_back({type, std::string(name.text), first.where});
         }
     }
@@ -147,7 +139,7 @@ private:
             const Token value = in_.next();
             if (value.type == TokenType::End || value.type == TokenType::Invalid || value.isPunctuation("{") ||
                 value.isPunctuation("}"))
-                in_.fail(value, "a value for \"" + std::string(key.text) + "\"");
+                in_.fail(value, "a value for \"" + printableExcerpt(key.text) + "\"");
             if (DefKeyValue* earlier = findKey(def, key.text)) {
                 diagnostics().warning(key.where, "key \"" + std::string(key.text) +
                                                      "\" is set again (first at line " +

@@ -85,17 +85,27 @@ double Token::numberValue() const {
     return value;
 }
 
+std::string printableExcerpt(std::string_view text) {
+    std::string out;
+    for (std::size_t i = 0; i < text.size() && i < kMaxQuotedChars; ++i) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        out += (c >= 0x20 && c < 0x7F) ? static_cast<char>(c) : '?';
+    }
+    if (text.size() > kMaxQuotedChars) out += "...";
+    return out;
+}
+
 std::string describe(const Token& token) {
     switch (token.type) {
     case TokenType::End: return "end of file";
-    case TokenType::String: return '"' + std::string(token.text) + '"';
+    case TokenType::String: return '"' + printableExcerpt(token.text) + '"';
     case TokenType::Literal:
-    case TokenType::Invalid: return '\'' + std::string(token.text) + '\'';
+    case TokenType::Invalid:
     case TokenType::Number:
     case TokenType::Name:
     case TokenType::Punctuation: break;
     }
-    return '\'' + std::string(token.text) + '\'';
+    return '\'' + printableExcerpt(token.text) + '\'';
 }
 
 Lexer::Lexer(std::string_view source, Diagnostics& diagnostics)
@@ -267,7 +277,7 @@ Token Lexer::readNumber(const char* start) {
         }
         if (dots > 1) {
             p_ = q;
-            return invalid(start, q, "more than one dot in number '" + std::string(start, q) + "'");
+            return invalid(start, q, "more than one dot in number '" + printableExcerpt({start, q}) + "'");
         }
         const bool exponent = q < end_ && (*q == 'e' || *q == 'E');
         if (dots == 1 || exponent) kind = NumberKind::Float;
@@ -276,7 +286,7 @@ Token Lexer::readNumber(const char* start) {
             if (q < end_ && (*q == '+' || *q == '-')) ++q;
             if (!digitsWhile([](char d) { return has(d, kDigit); })) {
                 p_ = q;
-                return invalid(start, q, "exponent without digits in number '" + std::string(start, q) + "'");
+                return invalid(start, q, "exponent without digits in number '" + printableExcerpt({start, q}) + "'");
             }
         } else if (dots == 1 && q < end_ && *q == '#') {
             // 1.#INF, 1.#IND, 1.#NAN, 1.#QNAN, 1.#SNAN: what MSVC printed for non-finite floats.

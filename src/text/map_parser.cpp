@@ -79,7 +79,7 @@ private:
 
     // `"key" "value"` with the value on the key's line.
     Token valueOnLine(const Token& key) {
-        const std::string expected = "the value of \"" + std::string(key.text) + "\" in double quotes on the same line";
+        const std::string expected = "the value of \"" + printableExcerpt(key.text) + "\" in double quotes on the same line";
         requireSameLine(key, expected);
         const Token value = in_.next();
         if (value.type != TokenType::String) fail(value, expected);
@@ -232,7 +232,7 @@ private:
             if (t.isPunctuation("}")) return patch;
             if (t.type != TokenType::String) fail(t, "a key in double quotes or '}' to close the patch");
             const Token value = in_.next();
-            if (value.type != TokenType::String) fail(value, "the value of \"" + std::string(t.text) + "\" in double quotes");
+            if (value.type != TokenType::String) fail(value, "the value of \"" + printableExcerpt(t.text) + "\" in double quotes");
             patch.keys.set(t.text, value.text, t.where);
         }
     }

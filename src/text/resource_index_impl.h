@@ -16,12 +16,15 @@ namespace fs = std::filesystem;
 struct FileSearch {
     std::optional<fs::path> found;
     std::vector<fs::path> tried;  // in search order, highest priority first
-    std::string problem;          // set when the path cannot be searched at all (a `..`)
+    std::string problem;          // set when the path cannot be searched at all (absolute, a `..`)
 };
 
 // A path as components: `\` and `/` both separate, empty and `.` components are dropped.
 // Nothing for a path with a `..`, which would leave the root.
 std::optional<std::vector<std::string>> splitGamePath(std::string_view path);
+
+// A path that names a place outside any root: it starts with `/` or `\` or a drive letter.
+bool isAbsoluteGamePath(std::string_view path);
 
 // Finds `components` below `base`: at each level the exact name first, then names that match
 // ignoring case, in sorted order, backtracking when a branch does not lead to the wanted kind of

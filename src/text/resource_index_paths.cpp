@@ -95,12 +95,19 @@ std::vector<std::string> listFilesRecursively(const fs::path& folder, std::strin
     return files;
 }
 
+bool isAbsoluteGamePath(std::string_view path) {
+    if (!path.empty() && (path.front() == '/' || path.front() == '\\')) return true;
+    // A drive letter (`C:/x`, `c:x`): absolute on Windows, where most mods were made.
+    return path.size() >= 2 && path[1] == ':' && ((path[0] | 0x20) >= 'a' && (path[0] | 0x20) <= 'z');
+}
+
 FileSearch ResourceIndex::Impl::findFile(std::string_view path) const {
     FileSearch search;
-    const fs::path asGiven{std::string(path)};
-    if (asGiven.is_absolute()) {
-        search.tried.push_back(asGiven);
-        if (isWanted(asGiven, false)) search.found = asGiven;
+    // Mod folders are untrusted input: Doom's file system never opens a file outside its search
+    // paths, so neither an absolute path nor a `..` is searched (docs/formats.md §1.1).
+    if (isAbsoluteGamePath(path)) {
+        search.problem = "the path is absolute, and files are only opened inside the root folders "
+                         "(as Doom's file system opens them only inside its search paths)";
         return search;
     }
     const std::optional<std::vector<std::string>> components = splitGamePath(path);

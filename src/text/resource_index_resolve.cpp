@@ -73,7 +73,7 @@ std::optional<std::string> ResourceIndex::Impl::locate(std::string_view kind, st
         message += " not found; looked in ";
         for (std::size_t i = 0; i < search.tried.size(); ++i) message += (i ? ", " : "") + search.tried[i].string();
         if (search.tried.empty()) message += "(no root folders)";
-        else if (!fs::path(std::string(path)).is_absolute()) message += " (each also ignoring case)";
+        else message += " (each also ignoring case)";
     }
     diagnostics.push_back(errorAt(namedAt, std::string(path), std::move(message)));
     return std::nullopt;

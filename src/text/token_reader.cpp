@@ -51,13 +51,13 @@ Real TokenReader::readFloat(std::string_view what, SourceLocation* where) {
     if (negative) t = next();
     if (t.type != TokenType::Number) fail(t, "a number for " + std::string(what));
     if (t.numberKind == NumberKind::SpecialFloat) {
-        diagnostics_.error(t.where, std::string(what) + " must be a finite number, found '" + std::string(t.text) + "'");
+        diagnostics_.error(t.where, std::string(what) + " must be a finite number, found '" + printableExcerpt(t.text) + "'");
         return std::numeric_limits<Real>::quiet_NaN();
     }
     const float value = static_cast<float>(t.numberValue());
     if (!std::isfinite(value)) {
         diagnostics_.error(t.where, std::string(what) + " is out of range for a 32-bit float, found '" +
-                                        std::string(t.text) + "'");
+                                        printableExcerpt(t.text) + "'");
         return std::numeric_limits<Real>::quiet_NaN();
     }
     return negative ? -Real(value) : Real(value);
@@ -72,9 +72,9 @@ int TokenReader::readInt(std::string_view what, SourceLocation* where) {
     const double value = t.numberValue();
     if (!t.isInteger())
         diagnostics_.error(t.where, "expected an integer for " + std::string(what) + ", found '" +
-                                        std::string(t.text) + "'");
+                                        printableExcerpt(t.text) + "'");
     if (!(value <= std::numeric_limits<int>::max())) {
-        diagnostics_.error(t.where, std::string(what) + " is out of range, found '" + std::string(t.text) + "'");
+        diagnostics_.error(t.where, std::string(what) + " is out of range, found '" + printableExcerpt(t.text) + "'");
         return 0;
     }
     const int truncated = static_cast<int>(value);

@@ -103,7 +103,7 @@ TEST(FigureErrors, DirectionThatVanishesOnTheSkeleton) {
     elbow.axis = AFVector{AFVector::Kind::BoneDir, false, {}, "lloarm", "LLOARM", {3, 7}};
     const FigureResult r = buildFigure(d, test::humanoidPose(), "broken.af");
     EXPECT_FALSE(r.ok());
-    EXPECT_EQ(r.formatDiagnostics(), "broken.af:3:7: error: hinge \"lelbow\": the axis is a zero vector on this skeleton\n");
+    EXPECT_EQ(r.formatDiagnostics(), "broken.af:3:7: error: hinge \"lelbow\": the axis is a zero vector on this skeleton, so the joint cannot be simulated\n");
 }
 
 TEST(FigureErrors, CustomModelsCannotBeBuilt) {

@@ -67,19 +67,23 @@ TEST(AFParserErrors, ConstraintBeforeAnyBodyHasNoBody1) {
 TEST(AFParserErrors, ZeroShaftsAndHingeAxis) {
     EXPECT_EQ(errorsOf(withRoot(R"af(universalJoint "u" { body1 "root" shafts ( 0, 0, 0 ), ( 0, 0, 1 ) }
 hinge "h" { body1 "root" })af")),
-              "bad.af:3:42: error: universalJoint \"u\": the first shaft must not be zero\n"
-              "bad.af:4:7: error: hinge \"h\": the axis must not be zero\n");
+              "bad.af:3:42: error: universalJoint \"u\": the first shaft must not be zero (the joint cannot be "
+              "simulated)\n"
+              "bad.af:4:7: error: hinge \"h\": the axis must not be zero (the joint cannot be simulated)\n");
 }
 
 TEST(AFParserErrors, UniversalJointWithoutShafts) {
     EXPECT_EQ(errorsOf(withRoot(R"af(universalJoint "u" { body1 "root" })af")),
-              "bad.af:3:16: error: universalJoint \"u\": the first shaft must not be zero\n"
-              "bad.af:3:16: error: universalJoint \"u\": the second shaft must not be zero\n");
+              "bad.af:3:16: error: universalJoint \"u\": the first shaft must not be zero (the joint cannot be "
+              "simulated)\n"
+              "bad.af:3:16: error: universalJoint \"u\": the second shaft must not be zero (the joint cannot be "
+              "simulated)\n");
 }
 
 TEST(AFParserErrors, NegativeDensity) {
     EXPECT_EQ(errorsOf(withRoot(R"af(body "b" { joint "j" density -0.5 })af")),
-              "bad.af:3:30: error: density must be greater than 0, found -0.5\n");
+              "bad.af:3:30: error: density must be greater than 0, found -0.5 (a body without mass cannot be "
+              "simulated)\n");
 }
 
 TEST(AFParserErrors, NotANumber) {
@@ -105,12 +109,14 @@ TEST(AFParserErrors, SpringWithoutItsValues) {
 
 TEST(AFParserErrors, SpringMinLongerThanMax) {
     EXPECT_EQ(errorsOf(withRoot(R"af(spring "s" { body1 "root" stretch 1 compress 1 damping 0 restLength 2 minLength 9 maxLength 3 })af")),
-              "bad.af:3:8: error: spring \"s\": minLength 9 is greater than maxLength 3\n");
+              "bad.af:3:8: error: spring \"s\": minLength 9 is greater than maxLength 3 (no length satisfies both, "
+              "so the spring cannot be simulated)\n");
 }
 
 TEST(AFParserErrors, ConeAngleOutOfRange) {
     EXPECT_EQ(errorsOf(withRoot(R"af(ballAndSocketJoint "b" { body1 "root" coneLimit ( 0, 0, 1 ), -10, ( 0, 0, 1 ) })af")),
-              "bad.af:3:62: error: the cone angle must be between 0 and 360 degrees, found -10\n");
+              "bad.af:3:62: error: the cone angle must be between 0 and 360 degrees, found -10 (a limit beyond a "
+              "full turn means nothing and cannot be simulated)\n");
 }
 
 TEST(AFParserErrors, FloatWhereIntegerExpected) {
@@ -125,11 +131,35 @@ TEST(AFParserErrors, NoOriginBody) {
               "bad.af:1:1: error: figure \"t\" has no body with joint \"origin\"; its root body needs one\n");
 }
 
-TEST(AFParserErrors, UnknownContentsName) {
-    EXPECT_EQ(errorsOf(withRoot(R"af(body "b" { joint "j" contents solid, lava })af")),
+// An unknown name is a warning (af_parser_test.cpp); what is not a name at all is an error.
+TEST(AFParserErrors, ContentsListOfSomethingOtherThanNames) {
+    EXPECT_EQ(errorsOf(withRoot(R"af(body "b" { joint "j" contents solid, 5 })af")),
               "bad.af:3:38: error: expected a contents name (none, solid, body, corpse, playerclip, monsterclip, "
               "opaque, water, moveableclip, ikclip, blood, projectile, rendermodel, trigger, aas_solid, "
-              "aas_obstacle, flashlight_trigger), found 'lava'\n");
+              "aas_obstacle, flashlight_trigger), found '5'\n");
+}
+
+// Doom loads these with a warning, or quietly; so do we, saying what they do.
+TEST(AFParserErrors, WhatDoomLoadsIsAWarningNotAnError) {
+    const AFParseResult r = parseAF("{ body \"b\" { } }\n" + withRoot(R"af(settings { noMoveTime -1 }
+body "b" { joint "j" angles joint( "x" ) mod 3 })af"), "w.af");
+    EXPECT_TRUE(r.ok()) << r.diagnostics.formatAll();
+    EXPECT_EQ(r.diagnostics.formatAll(),
+              "w.af:1:1: warning: a braced section without a decl name is skipped, as in Doom 3\n"
+              "w.af:4:23: warning: noMoveTime is negative, found -1; Doom 3 loads it, and so do we: the no-move "
+              "window is then judged from the first step\n"
+              "w.af:5:29: warning: angles written as joint(), bonecenter() or bonedir() read as ( 0, 0, 0 ), as in "
+              "Doom 3; write ( pitch, yaw, roll ) in degrees\n"
+              "w.af:5:46: warning: unknown mod '3' (orientation, position or both); orientation is used, as in "
+              "Doom 3\n");
+    ASSERT_EQ(r.file.decls.size(), 1u);
+    EXPECT_EQ(r.file.decls[0].bodies[1].angles, (Real3{0, 0, 0}));
+}
+
+TEST(AFParserErrors, NegativeBodyFrictionIsRefusedAsDoomRefusesIt) {
+    EXPECT_EQ(errorsOf(withRoot(R"af(body "b" { joint "j" friction -1, 0, 0 })af")),
+              "bad.af:3:31: error: linear friction must not be negative, found -1 (Doom 3 refuses it too: it keeps "
+              "its default friction and warns)\n");
 }
 
 TEST(AFParserErrors, VectorWordsAreCaseSensitive) {
@@ -143,10 +173,6 @@ TEST(AFParserErrors, EndOfFileInsideABlock) {
               "bad.af:1:33: error: expected a body key (joint, mod, model, origin, angles, density, inertiaScale, "
               "friction, contents, clipMask, selfCollision, containedJoints, frictionDirection, "
               "contactMotorDirection) or '}', found end of file\n");
-}
-
-TEST(AFParserErrors, DeclWithoutName) {
-    EXPECT_EQ(errorsOf("{ body \"b\" { } }"), "bad.af:1:1: error: expected a decl name before '{', found '{'\n");
 }
 
 TEST(AFParserErrors, MissingBraceAfterDeclName) {

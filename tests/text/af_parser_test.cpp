@@ -333,6 +333,47 @@ TEST(AFParser, LaterGameContentsNamesAreKeptWithAWarning) {
     EXPECT_EQ(r.diagnostics.warningCount(), 2u);
 }
 
+// Doom 3 ends the list at a name it does not know and loads the figure; later games name bits of
+// their own there. We warn, keep the name as written for the writer, and give it no effect.
+TEST(AFParser, UnknownContentsNamesAreKeptAsWrittenWithoutEffect) {
+    const AFParseResult r = parseAF(withRoot(R"af(body "b" { joint "j" contents corpse, MovableClip clipMask flyerhiveclip, solid })af"),
+                                    "q4.af");
+    ASSERT_TRUE(r.ok()) << r.diagnostics.formatAll();
+    const AFBody& b = r.file.decls[0].bodies[1];
+    EXPECT_EQ(b.contents, contents::Corpse);
+    EXPECT_EQ(b.unknownContents, std::vector<std::string>{"MovableClip"});
+    EXPECT_EQ(b.clipMask, contents::Solid | contents::MoveableClip);  // the bit every body gets
+    EXPECT_EQ(b.unknownClipMask, std::vector<std::string>{"flyerhiveclip"});
+    EXPECT_EQ(r.diagnostics.formatAll(),
+              "q4.af:3:39: warning: unknown contents name 'MovableClip' (a later game's?); kept and written back, "
+              "no effect here\n"
+              "q4.af:3:60: warning: unknown clipMask name 'flyerhiveclip' (a later game's?); kept and written back, "
+              "no effect here\n");
+}
+
+TEST(AFParser, NoneAndANewListDropTheUnknownNamesBeforeThem) {
+    const DeclAF d = parseOne(withRoot(R"af(settings { contents movableclip } body "a" { joint "j" } )af"
+                                       R"af(body "b" { joint "j" contents movableclip, none, body } )af"
+                                       R"af(body "c" { joint "j" contents body })af"));
+    EXPECT_EQ(d.bodies[1].unknownContents, std::vector<std::string>{"movableclip"});  // from the settings
+    EXPECT_TRUE(d.bodies[2].unknownContents.empty());
+    EXPECT_TRUE(d.bodies[3].unknownContents.empty());
+}
+
+// Doom reads any decl type in any decl file; in an .af file we skip what is not a figure.
+TEST(AFParser, DeclsOfOtherTypesAreSkippedWithAWarning) {
+    const AFParseResult r =
+        parseAF("entityDef e { \"k\" \"{v}\" }\nt { body \"r\" { joint \"origin\" } }\nMODEL m { mesh x.md5mesh }", "o.af");
+    ASSERT_TRUE(r.ok()) << r.diagnostics.formatAll();
+    ASSERT_EQ(r.file.decls.size(), 1u);
+    EXPECT_EQ(r.file.decls[0].name, "t");
+    EXPECT_EQ(r.diagnostics.formatAll(),
+              "o.af:1:1: warning: a decl of type entityDef in an .af file is skipped (Doom 3 reads it as one) and "
+              "not written back\n"
+              "o.af:3:1: warning: a decl of type MODEL in an .af file is skipped (Doom 3 reads it as one) and not "
+              "written back\n");
+}
+
 TEST(AFParser, NumbersAreHeldAtFloatPrecision) {
     const DeclAF d = parseOne(withRoot(R"af(body "b" { joint "j" density 0.1 })af"));
     EXPECT_EQ(d.bodies[1].density, Real(0.1f));

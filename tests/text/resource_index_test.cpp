@@ -2,6 +2,7 @@
 // Doom does, and an AF entity or a figure resolved to its decls, mesh and af_pose anim, with
 // errors that say what was looked for and where.
 
+#include "af/text/lexer.h"
 #include "af/text/resource_index.h"
 
 #include <gtest/gtest.h>
@@ -243,6 +244,62 @@ TEST(ResourceIndexRoots, PathsThatLeaveTheRootAreNotSearched) {
     const MeshLoad load = index.loadMesh("../models/stick/stick.md5mesh");
     ASSERT_EQ(errorsOf(load.diagnostics).size(), 1u);
     EXPECT_NE(load.diagnostics[0].message.find("leaves the root folder"), std::string::npos);
+}
+
+// Mod folders are untrusted: a decl that names a file outside the roots must not get it opened,
+// however the path is spelled, and the message says where it was written and which rule refused it.
+TEST(ResourceIndexRoots, AbsoluteMeshPathIsRefusedAtItsPlaceInTheDecl) {
+    const TempRoot mod("mod");
+    writeStick(mod);
+    mod.write("def/stick.def", stickModel("stick", "/etc/passwd") + afEntity("af_stick", "stick", "stick"));
+    const ResourceIndex index({mod.path()});
+    const AFResources r = index.resolveAFEntity("af_stick");
+    EXPECT_FALSE(r.ok());
+    EXPECT_EQ(errorsOf(r.diagnostics),
+              std::vector<std::string>{mod.str("def/stick.def") +
+                                       ":2:7: error: mesh \"/etc/passwd\" cannot be searched: the path is absolute, and "
+                                       "files are only opened inside the root folders (as Doom's file system opens "
+                                       "them only inside its search paths)"});
+    EXPECT_FALSE(r.mesh.mesh);
+}
+
+TEST(ResourceIndexRoots, NoSpellingOfAnAbsolutePathIsSearched) {
+    const TempRoot mod("mod");
+    writeStick(mod);
+    const ResourceIndex index({mod.path()});
+    // Each names the stick's mesh itself, which exists: only the spelling is refused.
+    const std::string inside = mod.str("models/stick/stick.md5mesh");
+    for (const std::string& path : {inside, "\\" + inside.substr(1), std::string("C:/models/stick/stick.md5mesh"),
+                                    std::string("c:models\\stick\\stick.md5mesh")}) {
+        EXPECT_FALSE(index.resolvePath(path).has_value()) << path;
+        const MeshLoad load = index.loadMesh(path);
+        ASSERT_EQ(errorsOf(load.diagnostics).size(), 1u) << path;
+        EXPECT_NE(load.diagnostics[0].message.find("the path is absolute"), std::string::npos) << path;
+    }
+    EXPECT_TRUE(index.resolvePath("models/stick/stick.md5mesh").has_value());
+}
+
+// A file that is not of the expected format is quoted only as a short printable token: a decl
+// may name any file in the mod folder, and its content must not end up in a log.
+TEST(ResourceIndexRoots, FileOfAnotherFormatIsQuotedShortAndPrintable) {
+    const TempRoot mod("mod");
+    writeStick(mod);
+    const std::string secret = "root:x:0:0:root:/root:/bin/bash:and_a_secret_that_must_not_show";
+    mod.write("models/stick/stick.md5mesh", secret + "\ndaemon:x:1:1\n");
+    const ResourceIndex index({mod.path()});
+    const MeshLoad load = index.loadMesh("models/stick/stick.md5mesh");
+    ASSERT_EQ(errorsOf(load.diagnostics).size(), 1u);
+    EXPECT_EQ(load.diagnostics[0].format(), mod.str("models/stick/stick.md5mesh") +
+                                                ":1:1: error: expected 'MD5Version' at the start of the file, found '" +
+                                                secret.substr(0, kMaxQuotedChars) + "...'");
+    EXPECT_EQ(kMaxQuotedChars, 32u);  // docs/formats.md §1.3 says so
+
+    // Control and high bytes inside a token become '?'.
+    mod.write("models/stick/stick.md5mesh", std::string("\"\x01\x1b[2J\xff\xfe\" rest"));
+    const ResourceIndex again({mod.path()});
+    const MeshLoad binary = again.loadMesh("models/stick/stick.md5mesh");
+    ASSERT_EQ(errorsOf(binary.diagnostics).size(), 1u);
+    EXPECT_EQ(binary.diagnostics[0].message, "expected 'MD5Version' at the start of the file, found \"??[2J??\"");
 }
 
 TEST(ResourceIndexRoots, MissingRootIsAnErrorAndTheOthersStillLoad) {

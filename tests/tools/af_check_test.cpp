@@ -65,6 +65,22 @@ TEST(AfCheck, AnErrorGivesExitOneAndPositionedDiagnostics) {
     EXPECT_NE(r.out.find("af/chain.af: ok"), std::string::npos) << r.out;
 }
 
+// --strict is a lint: a file Doom 3 loads only with warnings (here later games' names) fails.
+TEST(AfCheck, StrictMakesEveryWarningAnError) {
+    const ToolRun plain = afCheck("tests/golden/family_contents_names.af");
+    EXPECT_EQ(plain.status, 0) << plain.err;
+    EXPECT_NE(plain.err.find(":5:20: warning: unknown contents name 'movableclip'"), std::string::npos) << plain.err;
+    EXPECT_NE(plain.out.find("family_contents_names.af: ok"), std::string::npos) << plain.out;
+
+    const ToolRun strict = afCheck("--strict tests/golden/family_contents_names.af af/chain.af");
+    EXPECT_EQ(strict.status, 1);
+    EXPECT_NE(strict.err.find(":5:20: error: unknown contents name 'movableclip'"), std::string::npos) << strict.err;
+    EXPECT_EQ(strict.err.find("warning:"), std::string::npos) << strict.err;
+    EXPECT_NE(strict.out.find("family_contents_names.af: FAILED"), std::string::npos) << strict.out;
+    EXPECT_NE(strict.out.find("af/chain.af: ok"), std::string::npos) << strict.out;
+    EXPECT_EQ(afCheck("--strict --format tests/golden/family_contents_names.af").out, "");
+}
+
 TEST(AfCheck, MissingFileIsAnErrorNotACrash) {
     const ToolRun r = afCheck("no/such/file.af");
     EXPECT_EQ(r.status, 1);
@@ -115,7 +131,7 @@ TEST(AfCheck, JsonHasOneRecordPerFileWithTheFullData) {
     EXPECT_EQ(d["line"], 5);
     EXPECT_EQ(d["col"], 11);
     EXPECT_EQ(d["severity"], "error");
-    EXPECT_EQ(d["message"], "density must be greater than 0, found -1");
+    EXPECT_EQ(d["message"], "density must be greater than 0, found -1 (a body without mass cannot be simulated)");
 }
 
 // A hand-written file and its canonical form mean the same, so their data must be equal.

@@ -71,8 +71,12 @@ struct AFShape {
     int numSides = 3;
     Real width = 0;
     std::string customName;  // custom( "NAME" ): parsed and kept, never built
+    SourceLocation where;    // of the shape word; not part of the value (none for the default box)
 
-    friend bool operator==(const AFShape&, const AFShape&) = default;
+    friend bool operator==(const AFShape& a, const AFShape& b) {
+        return a.type == b.type && a.v1 == b.v1 && a.v2 == b.v2 && a.numSides == b.numSides &&
+               a.width == b.width && a.customName == b.customName;
+    }
 };
 
 // How a body drives its skeleton joint (docs/figures.md §3.6).
@@ -106,6 +110,11 @@ struct AFSettings {
     Real totalMass = -1;                   // > 0 rescales every body
     ContentsMask contents = contents::Corpse;
     ContentsMask clipMask = contents::Solid | contents::Corpse;
+    // Names in the lists that are none of Doom 3's contents flags (later games of the engine
+    // family add their own: `movableclip`, `flyerhiveclip`, ...), as written and in order: they
+    // have no effect here and are written back after the known names (docs/formats.md §1.9).
+    std::vector<std::string> unknownContents;
+    std::vector<std::string> unknownClipMask;
     bool selfCollision = true;
     AFExtensions extensions;
 
@@ -126,18 +135,23 @@ struct AFBody {
     Real contactFriction = 0;
     ContentsMask contents = 0;
     ContentsMask clipMask = 0;  // MoveableClip is always added by the parser
+    std::vector<std::string> unknownContents;  // as AFSettings::unknownContents
+    std::vector<std::string> unknownClipMask;
     bool selfCollision = true;
     std::string containedJoints = "*origin";
     std::optional<AFVector> frictionDirection;      // fixed to the body
     std::optional<AFVector> contactMotorDirection;  // fixed to the body; inert for .af figures
     SourceLocation where;                           // of the body's name
+    SourceLocation densityWhere;                    // of its value; none when not written
+    SourceLocation inertiaScaleWhere;               // of its `(`; none when not written
 
     friend bool operator==(const AFBody& a, const AFBody& b) {
         return a.name == b.name && a.joint == b.joint && a.mod == b.mod && a.shape == b.shape &&
                a.origin == b.origin && a.angles == b.angles && a.density == b.density &&
                a.inertiaScale == b.inertiaScale && a.linearFriction == b.linearFriction &&
                a.angularFriction == b.angularFriction && a.contactFriction == b.contactFriction &&
-               a.contents == b.contents && a.clipMask == b.clipMask && a.selfCollision == b.selfCollision &&
+               a.contents == b.contents && a.clipMask == b.clipMask && a.unknownContents == b.unknownContents &&
+               a.unknownClipMask == b.unknownClipMask && a.selfCollision == b.selfCollision &&
                a.containedJoints == b.containedJoints && a.frictionDirection == b.frictionDirection &&
                a.contactMotorDirection == b.contactMotorDirection;
     }

@@ -44,7 +44,17 @@ struct Token {
     double numberValue() const;
 };
 
-// How a token reads in a message: 'name', "string", end of file.
+// At most this many characters of a file's own text are quoted in a message. A file that is
+// not of the expected format (a binary, a system file named by a hostile decl) must not be
+// echoed into logs: a diagnostic shows a short, printable token of it, never its content
+// (docs/formats.md §1.3).
+inline constexpr std::size_t kMaxQuotedChars = 32;
+
+// `text` as a message may show it: every byte outside printable ASCII as `?`, and anything
+// beyond kMaxQuotedChars cut off and marked with `...`.
+std::string printableExcerpt(std::string_view text);
+
+// How a token reads in a message: 'name', "string", end of file; its text as printableExcerpt.
 std::string describe(const Token& token);
 
 class Lexer {

@@ -125,8 +125,9 @@ public:
     const EntityDef* findEntityDef(std::string_view name) const;
     const ModelDecl* findModel(std::string_view name) const;
 
-    // A file path relative to the roots (`\` or `/` separators), by the search order above; an
-    // absolute path is taken as it is. Nothing when no root has it, or the path has a `..`.
+    // A file path relative to the roots (`\` or `/` separators), by the search order above.
+    // Nothing when no root has it, or the path is absolute or has a `..`: mod folders are
+    // untrusted, and nothing outside the roots is ever opened.
     std::optional<std::filesystem::path> resolvePath(std::string_view path) const;
 
     // Loads an md5 file found by resolvePath, parsed once and cached by the file found. `namedAt`
