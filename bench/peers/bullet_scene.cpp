@@ -137,7 +137,7 @@ public:
             shape->setMargin(kMargin);  // btBoxShape keeps the margin inside the half-extents
             shapes_.push_back(std::move(shape));
         }
-        for (const auto& p : benchscene::scenePlacements(o.scene)) addRagdoll(p);
+        for (const auto& p : benchscene::scenePlacements(o.scene, o.count)) addRagdoll(p);
     }
 
     ~BulletScene() {

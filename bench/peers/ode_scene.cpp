@@ -127,7 +127,7 @@ public:
         space_ = dHashSpaceCreate(nullptr);
         contacts_ = dJointGroupCreate(0);
         dCreatePlane(space_, 0, 0, 1, 0);
-        for (const auto& p : benchscene::scenePlacements(o.scene)) addRagdoll(p);
+        for (const auto& p : benchscene::scenePlacements(o.scene, o.count)) addRagdoll(p);
     }
     ~OdeScene() {
         dJointGroupDestroy(contacts_);

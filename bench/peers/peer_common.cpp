@@ -16,7 +16,7 @@ namespace {
 
 void usage(const char* program, std::initializer_list<std::string_view> variants) {
     std::cerr << "usage: " << program
-              << " [--scene single|grid4|grid16|pile] --variant V [--steps N] [--max-seconds S]"
+              << " [--scene single|grid4|grid16|pile] [--count N] --variant V [--steps N] [--max-seconds S]"
                  " [--sleep on|off] [--selftest]\n  variants:";
     for (auto v : variants) std::cerr << ' ' << v;
     std::cerr << '\n';
@@ -46,6 +46,9 @@ std::optional<Options> parseOptions(int argc, char** argv, std::initializer_list
         std::string s(*v);
         if (a == "--scene") {
             o.scene = s;
+        } else if (a == "--count") {
+            o.count = static_cast<int>(std::strtol(s.c_str(), &end, 10));
+            if (*end || o.count < 1) v.reset();
         } else if (a == "--variant") {
             o.variant = s;
         } else if (a == "--steps") {

@@ -27,6 +27,7 @@ inline constexpr double kDt = benchscene::kTimeStep;
 
 struct Options {
     std::string scene = "single";
+    int count = 0;  // the pile's ragdolls; 0: the scene's own
     std::string variant;
     int steps = 600;
     double maxSeconds = 0.0;  // 0 = no limit

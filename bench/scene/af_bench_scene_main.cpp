@@ -26,13 +26,15 @@ double seconds(Clock::duration d) { return std::chrono::duration<double>(d).coun
 int main(int argc, char** argv) {
     CLI::App app{"Run the ragdoll benchmark scene (bench-scene.md) with the af engine; prints one JSON object."};
     std::string scene = "single";
-    std::string solver = "exact";
+    std::string solver = "tree";
     std::string sleep = "off";
     int steps = benchscene::kSteps;
     double maxSeconds = 0;
     app.add_option("--scene", scene, "single, grid4, grid16 or pile")
         ->check(CLI::IsMember({"single", "grid4", "grid16", "pile"}));
-    app.add_option("--solver", solver, "exact, tree or pgs")->check(CLI::IsMember({"exact", "tree", "pgs"}));
+    int count = 0;
+    app.add_option("--count", count, "ragdolls of the pile (default 32)")->check(CLI::PositiveNumber);
+    app.add_option("--solver", solver, "tree (the default), exact or pgs")->check(CLI::IsMember({"exact", "tree", "pgs"}));
     app.add_option("--steps", steps, "steps of 1/60 s")->check(CLI::PositiveNumber);
     app.add_option("--max-seconds", maxSeconds, "stop (partial) once the run has taken this long; 0: no limit")
         ->check(CLI::NonNegativeNumber);
@@ -43,7 +45,7 @@ int main(int argc, char** argv) {
     const std::map<std::string, af::SolverKind> solvers = {
         {"exact", af::SolverKind::Exact}, {"tree", af::SolverKind::Tree}, {"pgs", af::SolverKind::Pgs}};
     const bool sleeping = sleep == "on";
-    af::World world = benchscene::buildAfWorld(scene, solvers.at(solver), sleeping);
+    af::World world = benchscene::buildAfWorld(scene, solvers.at(solver), sleeping, count);
     const int ragdolls = static_cast<int>(world.figureIds().size());
     benchscene::RunMetrics metrics(ragdolls);
     std::vector<benchscene::BodyState> states;

@@ -106,8 +106,8 @@ af::Figure afRagdoll(const Placement& pl) {
     return f;
 }
 
-af::World buildAfWorld(std::string_view scene, af::SolverKind solver, bool comeToRest) {
-    const std::vector<Placement> placements = scenePlacements(scene);
+af::World buildAfWorld(std::string_view scene, af::SolverKind solver, bool comeToRest, int count) {
+    const std::vector<Placement> placements = scenePlacements(scene, count);
     af::World world(afWorldSettings(solver, comeToRest));
     world.addStaticPlane(af::Plane{af::Vec3::UnitZ(), 0});
     for (const Placement& pl : placements) {

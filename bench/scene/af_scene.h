@@ -34,7 +34,7 @@ af::WorldSettings afWorldSettings(af::SolverKind solver, bool comeToRest);
 af::Figure afRagdoll(const Placement& placement);
 
 // The whole scene: the ground plane, one figure per placement, initial velocities of §3.
-af::World buildAfWorld(std::string_view scene, af::SolverKind solver, bool comeToRest);
+af::World buildAfWorld(std::string_view scene, af::SolverKind solver, bool comeToRest, int count = 0);
 
 // Every body's state, ragdoll-major as RunMetrics wants it (out is resized, not reallocated once
 // large enough).

@@ -93,13 +93,15 @@ Vec3 boxInertia(const BoxBody& b) {
 std::span<const BoxBody> ragdollBodies() { return kBodies; }
 std::span<const JointDef> ragdollJoints() { return kJoints; }
 
-std::vector<Placement> scenePlacements(std::string_view scene) {
+std::vector<Placement> scenePlacements(std::string_view scene, int count) {
+    if (count < 0 || (count > 0 && scene != "pile"))
+        throw std::invalid_argument("a ragdoll count is for the pile scene only, and at least 1");
     if (scene == "single") return {{Vec3(0, 0, 1.9), standing(0.3), Vec3(0, 0, 0.5)}};
     if (scene == "grid4") return grid(4);
     if (scene == "grid16") return grid(16);
     if (scene == "pile") {
         std::vector<Placement> out;
-        for (int k = 0; k < 32; ++k) {
+        for (int k = 0; k < (count > 0 ? count : 32); ++k) {
             out.push_back({Vec3(0, 0, 0.5 + 0.6 * k),
                            axisAngle(Vec3::UnitZ(), 0.3 + k * kGolden) * axisAngle(Vec3::UnitX(), kPi / 2),
                            Vec3::Zero()});

@@ -59,8 +59,10 @@ struct Placement {
 };
 inline const Vec3 kPivot(0, 0, 0.9);
 
-// "single", "grid4", "grid16", "pile"; throws std::invalid_argument otherwise.
-std::vector<Placement> scenePlacements(std::string_view scene);
+// "single", "grid4", "grid16", "pile"; throws std::invalid_argument otherwise. `count` (≥ 1)
+// changes the pile's number of ragdolls (32 by default, §3); 0 keeps the scene's own, and any
+// other scene refuses it.
+std::vector<Placement> scenePlacements(std::string_view scene, int count = 0);
 
 // World centre, orientation, linear and angular velocity (world frame) of one body.
 struct BodyState {
