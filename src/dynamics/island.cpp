@@ -45,6 +45,7 @@ void Island::gather(std::span<const int> bodyIds, std::span<const int> jointIds,
             joints_.push_back(std::move(joint));
         }
         treeReady_ = false;
+        blocksReady_ = false;
         restRowsHeld_ = false;
     } else {
         for (std::size_t k = 0; k < jointIds.size(); ++k)

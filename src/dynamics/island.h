@@ -11,6 +11,7 @@
 
 #include "af/dynamics/world.h"
 #include "contact_set.h"
+#include "figure_blocks.h"
 #include "joint_errors.h"
 #include "lcp.h"
 #include "row_pgs.h"
@@ -125,10 +126,17 @@ private:
             for (const JointRowRange& range : ranges_) pivoted -= static_cast<std::size_t>(range.equalityRows);
         return pivoted > context.settings.exactRowLimit;
     }
+    // Whether the figures' blocks solve this island (figure_blocks.h): the tree solver's
+    // answer for an island too large to pivot over.
+    bool blocked(const IslandContext& context) const {
+        return context.settings.solver == SolverKind::Tree && large(context);
+    }
     // Whether PGS solves this island's velocities.
     bool iterative(const IslandContext& context) const {
-        return context.settings.solver == SolverKind::Pgs || large(context);
+        return context.settings.solver == SolverKind::Pgs || (large(context) && !blocked(context));
     }
+    // stopChange: see FigureBlockSolver::solve.
+    LcpStatus solveByFigures(BlockProblem problem, IslandContext& context, Real stopChange);
 
     std::vector<int> bodyIds_;
     std::vector<int> jointIds_;
@@ -196,6 +204,8 @@ private:
     bool sparseAnswered_ = false;  // the sparse path found this velocity solve's answer
     LcpPgsSolver pgs_;
     RowPgs rowPgs_;
+    FigureBlockSolver blocks_;
+    bool blocksReady_ = false;  // blocks_'s structure is that of joints_
     ShakeCorrection shake_;
     ShakeCorrection keptEnergy_;  // projects velocities onto the joints at the moved poses
     bool driftedLastStep_ = false;  // SHAKE had a drift to close in the last step

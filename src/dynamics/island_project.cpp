@@ -64,7 +64,17 @@ void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
         holdFrictionAtZero(rows_, ranges_);
         system_.buildResponses(rows_, bodies_, rowInertia_);
         shiftsOfSolution_ = false;
-        if (large(context)) {
+        if (blocked(context)) {
+            system_.setPositionRhs(rows_);
+            positionCache_.recall(rowKeys_, system_.states(), system_.solution());
+            // The contacts between figures are iterated to a share of the violation the pass
+            // removes (each pass then removes most of what is left), not to the tolerance at once.
+            const Real stopChange =
+                std::max(context.settings.positionTolerance, context.tuning.blocks.positionShare * violation);
+            if (solveByFigures(BlockProblem::Position, context, stopChange) != LcpStatus::Solved)
+                ++context.report.failures;
+            positionCache_.remember(rowKeys_, system_.states(), system_.solution());
+        } else if (large(context)) {
             system_.setPositionRhs(rows_);
             std::span<Real> x = system_.solution();
             positionCache_.recall(rowKeys_, system_.states(), x);

@@ -205,6 +205,9 @@ LcpStatus Island::solveVelocities(IslandContext& context) {
     std::span<LcpRowState> states = system_.states();
     sparseAnswered_ = false;
     if (large(context)) ++context.counters.largeIslands;
+    if (blocked(context))
+        return solveByFigures(BlockProblem::Velocity, context,
+                              context.tuning.blocks.velocityShare * context.settings.contact.slop / context.settings.timeStep);
     if (iterative(context)) {
         const LcpPgsResult r = rowPgs_.solve(rows_, system_, bodies_.size(), x, context.tuning.pgs);
         context.counters.iterations = std::max(context.counters.iterations, r.iterations);
@@ -221,6 +224,20 @@ LcpStatus Island::solveVelocities(IslandContext& context) {
     context.counters.pivots += r.pivots;
     context.report.residual = std::max(context.report.residual, r.residual);
     if (r.status != LcpStatus::Solved) solveWithFrozenFriction(problem, context);
+    return r.status;
+}
+
+// The problem in system_ (b set, its warm start recalled) by the figures' blocks.
+LcpStatus Island::solveByFigures(BlockProblem problem, IslandContext& context, Real stopChange) {
+    if (!blocksReady_) {
+        blocks_.setStructure(bodies_, joints_);
+        blocksReady_ = true;
+    }
+    const BlockSolveResult r =
+        blocks_.solve(problem, rows_, ranges_, rowKeys_, system_, bodies_, context.tuning, stopChange);
+    context.counters.iterations = std::max(context.counters.iterations, r.sweeps);
+    context.counters.treeFallbacks += r.treeFallbacks;
+    context.report.residual = std::max(context.report.residual, r.residual);
     return r.status;
 }
 
@@ -269,23 +286,9 @@ bool Island::solveSparse(const WarmStartCache& guess, IslandContext& context) {
 }
 
 // The row states of the impulses in system_ (the tree solver keeps its own), so that the next
-// solve's guess, which the sparse path starts from, is this answer: a row at a bound (a friction
-// row's box from its normal's impulse) is there, any other is free.
+// solve's guess, which the sparse path starts from, is this answer.
 void Island::statesFromImpulses(const IslandContext& context) {
-    const std::span<const Real> x = system_.solution();
-    const std::span<LcpRowState> states = system_.states();
-    const Real tolerance = context.tuning.exact.tolerance;
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-        const ConstraintRow& r = rows_[i];
-        Real lo = r.lo, hi = r.hi;
-        if (r.frictionSource >= 0) {
-            hi = r.frictionCoefficient * std::abs(x[static_cast<std::size_t>(r.frictionSource)]);
-            lo = -hi;
-        }
-        const bool atLower = std::isfinite(lo) && x[i] <= lo + tolerance * std::max(Real(1), std::abs(lo));
-        const bool atUpper = std::isfinite(hi) && x[i] >= hi - tolerance * std::max(Real(1), std::abs(hi));
-        states[i] = atLower ? LcpRowState::AtLower : atUpper ? LcpRowState::AtUpper : LcpRowState::Free;
-    }
+    af::statesFromImpulses(rows_, system_.solution(), system_.states(), context.tuning.exact.tolerance);
 }
 
 // Never apply the impulses of a failed pivoting solve: they may be far from any solution. The

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace af {
 
@@ -193,6 +194,21 @@ void displaceBody(RigidBody& body, const Vec3& linear, const Vec3& angular) {
     if (angle > 0) {
         body.orientation = Quat(Eigen::AngleAxis<Real>(angle, angular / angle)) * body.orientation;
         body.orientation.normalize();
+    }
+}
+
+void statesFromImpulses(const ConstraintRows& rows, std::span<const Real> x, std::span<LcpRowState> states,
+                        Real tolerance) {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const ConstraintRow& r = rows[i];
+        Real lo = r.lo, hi = r.hi;
+        if (r.frictionSource >= 0) {
+            hi = r.frictionCoefficient * std::abs(x[static_cast<std::size_t>(r.frictionSource)]);
+            lo = -hi;
+        }
+        const bool atLower = std::isfinite(lo) && x[i] <= lo + tolerance * std::max(Real(1), std::abs(lo));
+        const bool atUpper = std::isfinite(hi) && x[i] >= hi - tolerance * std::max(Real(1), std::abs(hi));
+        states[i] = atLower ? LcpRowState::AtLower : atUpper ? LcpRowState::AtUpper : LcpRowState::Free;
     }
 }
 

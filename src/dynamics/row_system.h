@@ -28,6 +28,12 @@ void accumulateResponses(std::span<const ConstraintRow> rows, std::span<const Ro
 // act on velocities only, so they are held at 0 and uncoupled.
 void holdFrictionAtZero(ConstraintRows& rows, std::span<const JointRowRange> ranges);
 
+// The row states of impulses x (one per row): a row at a bound (a friction row's box from its
+// source's impulse) is there, within `tolerance` relative; any other is free. What a solver that
+// keeps no states of its own (the tree, PGS) leaves the next solve's guess.
+void statesFromImpulses(const ConstraintRows& rows, std::span<const Real> x, std::span<LcpRowState> states,
+                        Real tolerance);
+
 // Cdot of a row at the bodies' current velocities.
 inline Real rowVelocity(const ConstraintRow& r, std::span<const RigidBody> bodies) {
     Real cdot = 0;

@@ -48,6 +48,7 @@ struct TreeSolver::Impl {
     TreeFactor tree;
     Auxiliary aux;
     bool valid = false;         // the last factor() matched the structure
+    bool auxiliaryBuilt = false;  // by factor(), not factorPrimary()
     bool withFriction = true;  // the last factor() kept the friction rows
 
     // Per row of the last factor().
@@ -167,6 +168,55 @@ void TreeSolver::factor(const ConstraintRows& rows, std::span<const JointRowRang
     if (!s.valid) return;
     s.aux.build(s.tree, s.forest, rows, s.auxRows);
     s.lcp.reserve(static_cast<int>(s.auxRows.size()));
+    s.auxiliaryBuilt = true;
+}
+
+void TreeSolver::factorPrimary(const ConstraintRows& rows, std::span<const JointRowRange> ranges,
+                               std::span<const RigidBody> bodies) {
+    Impl& s = *impl_;
+    s.auxiliaryBuilt = false;
+    s.withFriction = true;
+    s.valid = s.tree.factor(s.forest, rows, ranges, bodies);
+    if (s.valid) s.classify(rows, ranges, {});
+}
+
+bool TreeSolver::primaryResponse(int body, const Vec3& linear, const Vec3& angular, std::span<Vec3> linearOut,
+                                 std::span<Vec3> angularOut) {
+    Impl& s = *impl_;
+    if (!s.valid) return false;
+    const std::vector<int>& nodeOf = s.forest.nodeOfBody;
+    s.z.assign(s.forest.nodes.size(), Vec6::Zero());
+    const int node = nodeOf[static_cast<std::size_t>(body)];
+    if (node >= 0) {
+        s.z[static_cast<std::size_t>(node)].head<3>() = linear;
+        s.z[static_cast<std::size_t>(node)].tail<3>() = angular;
+    }
+    s.solvePrimary();
+    for (std::size_t b = 0; b < nodeOf.size(); ++b) {
+        const int n = nodeOf[b];
+        linearOut[b] = n >= 0 ? Vec3(s.solution[static_cast<std::size_t>(n)].head<3>()) : Vec3::Zero();
+        angularOut[b] = n >= 0 ? Vec3(s.solution[static_cast<std::size_t>(n)].tail<3>()) : Vec3::Zero();
+    }
+    return true;
+}
+
+void TreeSolver::addPrimaryImpulses(std::span<const Vec3> linear, std::span<const Vec3> angular,
+                                    std::span<Real> rowImpulses) {
+    Impl& s = *impl_;
+    if (!s.valid) return;
+    const std::vector<int>& nodeOf = s.forest.nodeOfBody;
+    const std::size_t nodes = s.forest.nodes.size();
+    s.z.assign(nodes, Vec6::Zero());
+    for (std::size_t b = 0; b < nodeOf.size(); ++b) {
+        const int n = nodeOf[b];
+        if (n < 0) continue;
+        s.z[static_cast<std::size_t>(n)].head<3>() = linear[b];
+        s.z[static_cast<std::size_t>(n)].tail<3>() = angular[b];
+    }
+    s.solvePrimary();
+    for (std::size_t i = 0; i < nodes; ++i)
+        for (int q = 0; q < s.nodeRows[i]; ++q)
+            rowImpulses[static_cast<std::size_t>(s.nodeFirst[i] + q)] -= s.solution[i](q);
 }
 
 TreeSolveResult TreeSolver::solveVelocity(const ConstraintRows& rows, std::span<const RigidBody> bodies) {
@@ -262,7 +312,7 @@ TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& s
     TreeSolveResult result;
     lambda.assign(rows.size(), 0);
     bodyImpulse.assign(sumPerBody ? forest.nodeOfBody.size() : 0, Vec6::Zero());
-    if (!valid || rows.size() != auxIndex.size() || (!position && !withFriction) || !setBounds(rows, position)) {
+    if (!valid || !auxiliaryBuilt || rows.size() != auxIndex.size() || (!position && !withFriction) || !setBounds(rows, position)) {
         result.status = LcpStatus::InvalidInput;
         return result;
     }

@@ -103,6 +103,19 @@ public:
     /// applyDisplacements move nothing after it (the sums per body they read are not made).
     TreeSolveResult solvePositionImpulses(const ConstraintRows& rows);
 
+    /// The primary rows alone factorised at the bodies' poses, for primaryResponse and
+    /// addPrimaryImpulses (the solves above need factor() again after it).
+    void factorPrimary(const ConstraintRows& rows, std::span<const JointRowRange> ranges,
+                       std::span<const RigidBody> bodies);
+    /// After factorPrimary: every body's velocity change per unit impulse along (linear,
+    /// angular) on `body` with the primary rows holding (the articulated response, H⁻¹ of the
+    /// impulse), written per body into the outputs. False when not factorised.
+    bool primaryResponse(int body, const Vec3& linear, const Vec3& angular, std::span<Vec3> linearOut,
+                         std::span<Vec3> angularOut);
+    /// After factorPrimary: adds to rowImpulses (one per row given to it) the primary rows'
+    /// impulses that hold them while the impulses Jᵀλ summed per body (linear, angular) act.
+    void addPrimaryImpulses(std::span<const Vec3> linear, std::span<const Vec3> angular, std::span<Real> rowImpulses);
+
     /// λ of every row of the last solve, in the rows' order.
     std::span<const Real> impulses() const;
     /// v += M⁻¹ Jᵀ λ for the last solve's λ (rows as given to factor).

@@ -90,8 +90,8 @@ TEST(WorldRest, PlanesAndBrushesShareTheNumbersRemoveStaticTakes) {
 
 TEST(WorldRest, PileOfHumanoidsSleepsAsOneIslandAndWakesWhenOneIsPushed) {
     // The default (tree) solver: the pile is one island whose rows outside the joints' equality
-    // rows number beyond exactRowLimit, so the world solves it by PGS on its rows, velocities and
-    // positions (the pivoting solver would take minutes over that dense problem).
+    // rows number beyond exactRowLimit, so the world solves it figure by figure (figure_blocks.h),
+    // velocities and positions (the pivoting solver would take minutes over that dense problem).
     World world;
     for (int i = 0; i < 4; ++i) world.addFigure(humanoidAt(Vec3(0, 0, 20 + 30 * i), 0, 90));
     world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
@@ -110,12 +110,10 @@ TEST(WorldRest, PileOfHumanoidsSleepsAsOneIslandAndWakesWhenOneIsPushed) {
     }
     ASSERT_GT(rest, 0) << "the pile never slept";
     EXPECT_GT(largeIslandSteps, 0) << "the pile never made one island beyond exactRowLimit";
-    // PGS's position passes close the joints to positionTolerance (1e-10) in every step: the
-    // worst joint error of the whole fall measured 5.3e-11, 1.1e-13 at rest (twelve piles
-    // dropped from slightly other heights and yaws: at most 1.3e-10, 9e-11 at rest). Where a
-    // pass's PGS answer does not lower the largest violation the projection stops with the
-    // joints open: at 40a1086 that left 1.3e-5 at rest (5.4e-5 at worst during the fall).
-    EXPECT_LT(worstJoint, 5e-10) << "PGS on the pile must still close the joints";
+    // Each figure's block is solved exactly in every sweep, velocities and positions, so the
+    // joints hold as in a figure alone (PGS over all rows, before the blocks: 5.3e-11 over the
+    // fall; at 40a1086, when a pass's PGS answer did not lower the largest violation, 1.3e-5 at rest).
+    EXPECT_LT(worstJoint, 5e-10) << "the blocks must close the joints";
     // Figures that touch rest as one group: none of the four came to rest on its own before the
     // pile did (all four at step 72), and every body of the resting pile is still.
     for (int f = 0; f < 4; ++f) EXPECT_EQ(figureRest[static_cast<std::size_t>(f)], rest) << "figure " << f;
