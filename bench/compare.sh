@@ -73,7 +73,7 @@ common=(--scene "$scene" --steps "$steps" --max-seconds "$max_seconds" --sleep "
 for t in "${targets[@]}"; do
     exe=$(program "$t")
     case $t in
-        af-bench-scene) runs=("--solver tree" "--solver exact" "--solver pgs") ;;
+        af-bench-scene) runs=("--solver tree" "--solver tree --threads 2" "--solver exact" "--solver pgs") ;;
         ode-bench-scene) runs=("--variant dantzig" "--variant quickstep20") ;;
         *) runs=("--variant si10" "--variant mlcp_dantzig") ;;
     esac

@@ -80,6 +80,8 @@ int main(int argc, char** argv) {
     app.add_option("--count", o.scene.count, "figures dropped in a pile")->check(CLI::Range(1, 1000))->capture_default_str();
     app.add_option("--seconds", o.run.seconds, "simulated time limit, seconds")->check(CLI::Range(0.001, 86400.0))->capture_default_str();
     app.add_option("--solver", o.solver, "constraint solver")->check(CLI::IsMember({"exact", "tree", "pgs"}))->capture_default_str();
+    app.add_option("--threads", o.scene.world.threads, "threads that step figures apart side by side (same results on any count)")
+        ->check(CLI::Range(1, 256))->capture_default_str();
     app.add_option("--seed", o.scene.seed, "a small deterministic initial push, from this seed");
     app.add_flag("--json", o.json, "print the summary as one JSON object");
     app.add_option("--png", o.png, "write a picture of the final pose");

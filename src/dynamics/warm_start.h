@@ -45,7 +45,8 @@ private:
         Real impulse;
     };
     std::vector<Entry> entries_;  // in the order remembered
-    // The index, built on demand by const recalls (an island's caches are used by one thread).
+    // The index, built on demand by const recalls: an island's caches are used by one thread, and
+    // the world's is indexed (sort) before its islands recall from it on several.
     mutable std::vector<std::pair<std::uint64_t, std::size_t>> byKey_;  // (key, index into entries_), sorted
     mutable std::vector<std::uint64_t> indexedKeys_;  // the entries' keys byKey_ was built from
     mutable bool indexChecked_ = false;                // byKey_ is known to index entries_

@@ -14,6 +14,7 @@ World::World(const WorldSettings& settings) : state_(std::make_unique<State>()) 
     State& s = *state_;
     s.settings = settings;
     s.collision = CollisionWorld(settings.collision);
+    s.startThreads();
 }
 
 World::World(const Figure& figure, const WorldSettings& settings) : World(settings) { addFigure(figure); }

@@ -33,6 +33,7 @@ std::string problemOf(const WorldSettings& s) {
     for (Real v : {r.jointCfm, r.limitCfm, r.frictionCfm, r.limitMargin, r.springLimitMargin})
         if (!finiteAtLeastZero(v)) return "joint row CFMs and margins must be finite and ≥ 0";
     if (!std::isfinite(r.forcedFriction)) return "forcedFriction is not finite";
+    if (s.threads < 1 || s.threads > 256) return "threads must be in [1, 256]";
     return {};
 }
 
@@ -50,6 +51,7 @@ void World::setSettings(const WorldSettings& settings) {
     State& s = *state_;
     s.settings = settings;
     s.collision.setSettings(settings.collision);
+    s.startThreads();
     s.renumber();
     for (std::size_t f = 0; f < s.figures.size(); ++f) s.wake(static_cast<int>(f));
 }

@@ -9,6 +9,7 @@
 #include "solver_counters.h"
 #include "solver_tuning.h"
 #include "warm_start.h"
+#include "worker_pool.h"
 
 #include <cstdint>
 #include <memory>
@@ -40,6 +41,12 @@ struct World::State {
     Real time = 0;
     StepReport report;
     SolverCounters counters;  // the rest of the last step's report (detail::WorldAccess)
+    // settings.threads − 1 workers beside the calling thread (none for 1), and each island's
+    // share of the report and counters of one pass over the islands, merged in island order.
+    std::unique_ptr<WorkerPool> pool;
+    std::vector<StepReport> islandReports;
+    std::vector<SolverCounters> islandCounters;
+    void startThreads();
     int failures = 0;
 
     // Collision: shapes and filters, per-body surface data and reach, this step's contacts.

@@ -242,16 +242,43 @@ void World::State::buildIslands() {
 // which returns whether the island changed (and is written back). ofSearch: the points are the
 // search's (a step's start); islands built of the same search before are the same, unless the
 // extra source, which may change its rows, joins bodies too.
+//
+// Islands share nothing they write: each gathers its bodies, steps them with its own solvers and
+// writes them back to its own places, and reports into its own counters, which are merged in
+// island order. So the islands run on the worker threads (in any order, on any thread) to the
+// same bits as one after another, except with extra rows, which read the whole world's bodies.
 template <class Run>
 void World::State::forEachIsland(bool ofSearch, Run run) {
     if (!(ofSearch && searchKept && islandsOfSearch && !extraRows)) buildIslands();
     islandsOfSearch = ofSearch;
-    IslandContext shared{settings, tuning, extraRows, bodies, report, counters, warmStart};
+    islandReports.assign(islandCount, StepReport{});
+    islandCounters.assign(islandCount, SolverCounters{});
     const IslandWorld world{bodies, joints, contacts.points(), localOf};
-    for (std::size_t k = 0; k < islandCount; ++k) {
+    const auto stepIsland = [&](std::size_t k) {
+        IslandContext own{settings, tuning, extraRows, bodies, islandReports[k], islandCounters[k], warmStart};
         Island& island = islands[k];
         island.gather(members[k].bodies, members[k].joints, members[k].points, world);
-        if (run(island, shared)) island.scatter(bodies, joints);
+        if (run(island, own)) island.scatter(bodies, joints);
+    };
+    if (pool && islandCount > 1 && !extraRows) {
+        warmStart.sort();  // the index the islands' recalls would otherwise build, each on its own
+        pool->run(islandCount, stepIsland);
+    } else {
+        for (std::size_t k = 0; k < islandCount; ++k) stepIsland(k);
+    }
+    for (std::size_t k = 0; k < islandCount; ++k) {
+        report.rows += islandReports[k].rows;
+        report.residual = std::max(report.residual, islandReports[k].residual);
+        report.failures += islandReports[k].failures;
+        counters.add(islandCounters[k]);
+    }
+}
+
+void World::State::startThreads() {
+    if (settings.threads <= 1) {
+        pool.reset();
+    } else if (!pool || pool->threads() != settings.threads) {
+        pool = std::make_unique<WorkerPool>(settings.threads);
     }
 }
 

@@ -63,8 +63,9 @@ struct WorldAccess;  // src/dynamics/world_access.h: for tests and benchmarks, n
 // taking over when the one before gives up. It is the default because it costs a fraction of
 // Exact (our humanoid dropped on the default map: 0.85 against 1.6 ms a step). Pgs: projected
 // Gauss–Seidel on the rows (velocities only). The position projection uses the tree solver
-// with Tree, the dense pivoting solve otherwise. Islands beyond exactRowLimit rows use PGS for
-// both.
+// with Tree, the dense pivoting solve otherwise. Islands beyond exactRowLimit rows (piles of
+// figures) are solved figure by figure with Tree (each figure's rows exactly, the contacts
+// between figures iterated: docs/solver.md), by PGS over all rows otherwise.
 enum class SolverKind { Exact, Tree, Pgs };
 
 struct WorldSettings {
@@ -72,12 +73,12 @@ struct WorldSettings {
     Real timeStep = Real(1) / 60;      // s
     int substeps = 1;
     SolverKind solver = SolverKind::Tree;
-    // An island whose pivoting solve would have more rows than this is solved by PGS on its rows
-    // (velocities and positions), whatever `solver` says: a pivot costs O(rows²) and the dense
-    // matrices O(rows²) memory, so a pile of many figures would take seconds per step. The rows
-    // counted are all of them for Exact, those outside the joints' equality rows for Tree (the
-    // Schur complement's). One figure's island (our humanoid: up to ~300 rows tumbling on the
-    // floor) stays exact; with Tree, two figures touching do too.
+    // An island whose pivoting solve would have more rows than this is solved figure by figure
+    // with Tree, by PGS on its rows otherwise (velocities and positions): a pivot costs O(rows²)
+    // and the dense matrices O(rows²) memory, so a pile of many figures would take seconds per
+    // step. The rows counted are all of them for Exact, those outside the joints' equality rows
+    // for Tree (the Schur complement's). One figure's island (our humanoid: up to ~300 rows
+    // tumbling on the floor) stays exact; with Tree, two figures touching do too.
     std::size_t exactRowLimit = 400;
     IntegrationSettings integration;
     JointRowSettings rows;
@@ -99,6 +100,11 @@ struct WorldSettings {
     // than impulseThreshold are ignored, as Doom ignores them, so they cannot wake a figure.
     bool comeToRest = true;
     Real impulseThreshold = 500;  // mass units · units/s (Doom's IMPULSE_THRESHOLD)
+    // Threads that step independent islands (figures that do not touch) side by side, the
+    // calling thread one of them; 1 to 256. Each island is solved alone whatever the count, so a
+    // world steps to the same bits on any number of threads. While a drag or extra rows are
+    // active the islands are stepped one after another (their rows read the world's bodies).
+    int threads = 1;
 };
 
 // What the last step did.
