@@ -289,12 +289,10 @@ bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const C
 }
 
 // A block neither the sparse path nor the tree solved goes to the dense pivoting solve, as a
-// figure alone does (Island::solveVelocities); if that fails too, never its answer: as
-// Island::solveWithFrozenFriction, PGS estimates the normals, the friction boxes are frozen at μ
-// times those, and the pivoting solver solves that convex problem, or PGS's answer stands.
-// Returns the dense solve's status.
+// figure alone does (Island::solveVelocities); if that fails too, never its answer: the
+// frozen-box answer (frozen_boxes.h), PGS started from the block's last answer. Returns the
+// dense solve's status.
 LcpStatus FigureBlockSolver::solveDense(Figure& figure, const SolverTuning& tuning) {
-    const std::size_t n = figure.rows.size();
     std::copy(figure.lastX.begin(), figure.lastX.end(), figure.x.begin());
     figure.system.build(figure.localRows, figure.localBodies);
     LcpProblem problem = figure.system.problem();
@@ -304,29 +302,12 @@ LcpStatus FigureBlockSolver::solveDense(Figure& figure, const SolverTuning& tuni
     problem.findex = figure.findex;
     problem.mu = figure.mu;
     problem.cfm = figure.cfm;
-    LcpExactSolver exact(tuning.exact);
-    const LcpStatus status = exact.solve(problem, figure.x, figure.states).status;
+    exact_.setSettings(tuning.exact);
+    const LcpStatus status = exact_.solve(problem, figure.x, figure.states).status;
     if (status == LcpStatus::Solved) return status;
     std::copy(figure.lastX.begin(), figure.lastX.end(), figure.x.begin());
-    LcpPgsSolver pgs(tuning.pgs);
-    pgs.solve(problem, figure.x);
-    frozenLo_.assign(figure.lo.begin(), figure.lo.end());
-    frozenHi_.assign(figure.hi.begin(), figure.hi.end());
-    for (std::size_t k = 0; k < n && !figure.findex.empty(); ++k) {
-        const int source = figure.findex[k];
-        if (source < 0) continue;
-        const Real box = figure.mu[k] * std::abs(figure.x[static_cast<std::size_t>(source)]);
-        frozenLo_[k] = -box;
-        frozenHi_[k] = box;
-    }
-    problem.lo = frozenLo_;
-    problem.hi = frozenHi_;
-    problem.findex = {};
-    problem.mu = {};
-    pgsAnswer_.assign(figure.x.begin(), figure.x.end());
-    frozenStates_.assign(n, LcpRowState::Unknown);
-    if (exact.solve(problem, figure.x, frozenStates_).status != LcpStatus::Solved)
-        std::copy(pgsAnswer_.begin(), pgsAnswer_.end(), figure.x.begin());
+    pgs_.setSettings(tuning.pgs);
+    frozenBoxes_.solve(problem, figure.x, figure.states, exact_, pgs_);
     return status;
 }
 

@@ -14,6 +14,7 @@
 
 #include "af/dynamics/joints.h"
 #include "constraint_row.h"
+#include "frozen_boxes.h"
 #include "joint_rows.h"
 #include "lcp.h"
 #include "row_system.h"
@@ -108,8 +109,10 @@ private:
     std::vector<Vec3> blockLinear_, blockAngular_, betweenLinear_, betweenAngular_;
     std::vector<Vec3> impulseLinear_, impulseAngular_;  // per island body: Jᵀλ of the rows between figures
     std::vector<Vec3> figureLinear_, figureAngular_;    // scratch, per body of one figure
-    std::vector<Real> frozenLo_, frozenHi_, pgsAnswer_;  // scratch of solveDense
-    std::vector<LcpRowState> frozenStates_;
+    // solveDense's solvers, for every block in turn.
+    LcpExactSolver exact_;
+    LcpPgsSolver pgs_;
+    FrozenBoxFallback frozenBoxes_;
 };
 
 }  // namespace af

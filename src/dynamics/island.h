@@ -12,6 +12,7 @@
 #include "af/dynamics/world.h"
 #include "contact_set.h"
 #include "figure_blocks.h"
+#include "frozen_boxes.h"
 #include "joint_errors.h"
 #include "lcp.h"
 #include "row_pgs.h"
@@ -226,7 +227,7 @@ private:
     bool shiftsOfSolution_ = false;  // the shifts are M⁻¹Jᵀ of this pass's system_.solution()
     WarmStartCache velocityCache_;
     WarmStartCache positionCache_;  // the last position pass of this island (this step or before)
-    std::vector<Real> frozenLo_, frozenHi_, pgsAnswer_;
+    FrozenBoxFallback frozenBoxes_;
     bool settingsSet_ = false;
 };
 

@@ -291,42 +291,16 @@ void Island::statesFromImpulses(const IslandContext& context) {
     af::statesFromImpulses(rows_, system_.solution(), system_.states(), context.tuning.exact.tolerance);
 }
 
-// Never apply the impulses of a failed pivoting solve: they may be far from any solution. The
-// failure is counted, and the step goes on with the best answer at hand: PGS estimates the
-// normal impulses, the friction boxes are frozen at μ times those, and the pivoting solver solves
-// that uncoupled problem, which is a convex one it always solves. If even that fails, PGS's
-// bounded answer is used.
+// Never apply the impulses of a failed pivoting solve: the failure is counted, and the step goes
+// on with the frozen-box answer (frozen_boxes.h), PGS started from the warm start.
 void Island::solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context) {
     std::span<Real> x = system_.solution();
     std::span<LcpRowState> states = system_.states();
     context.velocityWarmStart.recall(rowKeys_, states, x);
-    const LcpPgsResult estimate = pgs_.solve(problem, x);
-    context.counters.iterations = std::max(context.counters.iterations, estimate.iterations);
-    context.report.residual = std::max(context.report.residual, estimate.residual);
-
-    const std::size_t n = static_cast<std::size_t>(problem.size);
-    frozenLo_.assign(problem.lo.begin(), problem.lo.end());
-    frozenHi_.assign(problem.hi.begin(), problem.hi.end());
-    for (std::size_t i = 0; i < n && !problem.findex.empty(); ++i) {
-        const int source = problem.findex[i];
-        if (source < 0) continue;
-        const Real box = problem.mu[i] * std::abs(x[static_cast<std::size_t>(source)]);
-        frozenLo_[i] = -box;
-        frozenHi_[i] = box;
-    }
-    LcpProblem frozen = problem;
-    frozen.lo = frozenLo_;
-    frozen.hi = frozenHi_;
-    frozen.findex = {};
-    frozen.mu = {};
-    pgsAnswer_.assign(x.begin(), x.end());
-    std::fill(states.begin(), states.end(), LcpRowState::Unknown);
-    const LcpResult r = exact_.solve(frozen, x, states);
-    if (r.status == LcpStatus::Solved) {
-        context.report.residual = std::max(context.report.residual, r.residual);
-    } else {
-        std::copy(pgsAnswer_.begin(), pgsAnswer_.end(), x.begin());
-    }
+    const FrozenBoxResult r = frozenBoxes_.solve(problem, x, states, exact_, pgs_);
+    context.counters.iterations = std::max(context.counters.iterations, r.estimate.iterations);
+    context.report.residual = std::max(context.report.residual, r.estimate.residual);
+    if (r.frozen.status == LcpStatus::Solved) context.report.residual = std::max(context.report.residual, r.frozen.residual);
 }
 
 // A settling figure's contacts cost as much to write as its joints, and SHAKE moves along the
