@@ -29,7 +29,7 @@ import json, sys
 j = json.load(sys.stdin)
 rest = j["rest_time_s"]
 print("%5d %6d %8s %8d %12.3g %12.3g %d" % (int(sys.argv[1]), j["steps"], "-" if rest is None else "%.2f" % rest,
-      j["solver_failures"], j["max_joint_error"], j["max_penetration"], 1 if (j["nan_detected"] or rest is None) else 0))
+      j["solver_failures"], j["max_joint_error"], j["max_penetration"], 1 if (j["invalid_motion"] or rest is None) else 0))
 ' "$s"
 done | awk '
     { printf "%5s %6s %8s %8s %12s %12s\n", $1, $2, $3, $4, $5, $6; steps += $2; failed += $4; bad += $7

@@ -4,8 +4,9 @@
 // With no arguments: our humanoid ragdoll (entityDef ragdoll_humanoid from def/) dropped onto
 // maps/default.map of this source tree.
 //
-// Exit status: 0 when the run finished (rested or not: the summary says which), 1 when a NaN or
-// an infinity appeared in the simulation, 2 for bad usage or bad input (an unknown option or
+// Exit status: 0 when the run finished (rested or not: the summary says which), 1 when a step
+// made a figure's motion invalid (a NaN, an infinity or an explosion: the world put the figure
+// back and the run went on; the summary says which and when), 2 for bad usage or bad input (an unknown option or
 // value, an unknown entity, a file that does not load or cannot be written).
 
 #include "sim_bake.h"
@@ -64,7 +65,7 @@ int simulate(Options& o) {
                                          {"trajectory", o.trajectory}, {"md5anim", o.md5anim}})
             if (!path.empty()) std::cout << "  " << what << ": " << path << '\n';
     }
-    return result.nanDetected ? 1 : 0;
+    return result.restored.empty() ? 0 : 1;
 }
 
 }  // namespace

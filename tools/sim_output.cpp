@@ -1,5 +1,6 @@
 #include "sim_output.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace af::sim {
@@ -33,6 +34,17 @@ std::string bodyName(const Scene& scene, std::size_t worldBody) {
     return name + "#" + std::to_string(scene.world.figureOf(static_cast<int>(worldBody)).value);
 }
 
+std::string figureName(const Scene& scene, FigureId figure) {
+    const auto at = std::find(scene.figures.begin(), scene.figures.end(), figure);
+    const std::string number = std::to_string(at - scene.figures.begin() + 1);
+    return scene.figures.size() == 1 ? "the figure" : "figure " + number;
+}
+
+std::string reasonText(const RestoredFigure& r) {
+    if (r.reason == InvalidMotion::NonFinite) return "a NaN or an infinity";
+    return "kinetic energy " + general(r.energy) + " where at most " + general(r.budget) + " could be supplied";
+}
+
 }  // namespace
 
 std::string summaryText(const Scene& scene, const RunResult& r) {
@@ -47,7 +59,9 @@ std::string summaryText(const Scene& scene, const RunResult& r) {
     out += "  max limit violation " + general(r.maxLimitViolationDeg) + " deg\n";
     out += "  final kinetic energy " + general(r.finalKineticEnergy) + "\n";
     out += "  solver failures     " + std::to_string(r.solverFailures) + "\n";
-    if (r.nanDetected) out += "  NaN detected: the simulation blew up and was stopped\n";
+    for (const RunResult::Restore& e : r.restored)
+        out += "  invalid motion      " + figureName(scene, e.figure.figure) + " at " + fixed(e.time, 3) + " s: " +
+               reasonText(e.figure) + "; put back where it was before the step, at rest\n";
     return out;
 }
 
@@ -64,7 +78,12 @@ nlohmann::ordered_json summaryJson(const Scene& scene, const RunResult& r) {
     j["max_limit_violation_deg"] = r.maxLimitViolationDeg;
     j["final_kinetic_energy"] = r.finalKineticEnergy;
     j["solver_failures"] = r.solverFailures;
-    j["nan_detected"] = r.nanDetected;
+    nlohmann::ordered_json restored = nlohmann::ordered_json::array();
+    for (const RunResult::Restore& e : r.restored)
+        restored.push_back({{"figure", figureName(scene, e.figure.figure)},
+                            {"time_s", e.time},
+                            {"reason", e.figure.reason == InvalidMotion::NonFinite ? "non-finite" : "energy gain"}});
+    j["invalid_motion"] = restored;
     nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < scene.world.bodies().size(); ++i) {
         const RigidBody& b = scene.world.bodies()[i];

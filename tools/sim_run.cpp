@@ -6,18 +6,6 @@
 
 namespace af::sim {
 
-namespace {
-
-bool finite(const World& world) {
-    for (const RigidBody& b : world.bodies())
-        if (!b.position.allFinite() || !b.orientation.coeffs().allFinite() || !b.linearVelocity.allFinite() ||
-            !b.angularVelocity.allFinite())
-            return false;
-    return true;
-}
-
-}  // namespace
-
 RunResult run(Scene& scene, const RunOptions& options, const std::function<void(const World&)>& afterStep) {
     World& world = scene.world;
     RunResult result;
@@ -39,10 +27,7 @@ RunResult run(Scene& scene, const RunOptions& options, const std::function<void(
     while (result.steps < maxSteps) {
         world.step();
         ++result.steps;
-        if (!finite(world)) {
-            result.nanDetected = true;
-            break;
-        }
+        for (const RestoredFigure& r : world.lastStep().restored) result.restored.push_back({world.time(), r});
         const Real jointError = world.maxJointError();
         const Real kinetic = world.kineticEnergy();
         result.maxJointError = std::max(result.maxJointError, jointError);

@@ -34,7 +34,13 @@ struct RunResult {
     Real maxLimitViolationDeg = 0;    // degrees, over the whole run
     Real finalKineticEnergy = 0;
     int solverFailures = 0;
-    bool nanDetected = false;
+    // Figures whose motion a step made invalid (a NaN, or an explosion), put back by the world's
+    // guard (StepReport::restored): when, which, why.
+    struct Restore {
+        Real time = 0;
+        RestoredFigure figure;
+    };
+    std::vector<Restore> restored;
     std::vector<Sample> history;      // one per step
     std::vector<Real> frameTimes;     // the poses kept for pictures
     std::vector<std::vector<RigidPose>> frames;

@@ -47,6 +47,12 @@ std::string fixed(Real v, int decimals = 2) {
     return buffer;
 }
 
+std::string general(Real v) {
+    char buffer[48];
+    std::snprintf(buffer, sizeof buffer, "%.3g", v);
+    return buffer;
+}
+
 std::string vec(const Vec3& v) { return "(" + fixed(v.x()) + " " + fixed(v.y()) + " " + fixed(v.z()) + ")"; }
 
 std::string padded(const std::string& text, std::size_t width) { return text + std::string(width > text.size() ? width - text.size() : 0, ' '); }
@@ -218,9 +224,19 @@ void ShowReport::step(World& world) {
     ++steps_;
     totalMs_ += ms;
     longestMs_ = std::max(longestMs_, ms);
+    for (const RestoredFigure& r : world.lastStep().restored) restored_.push_back({world.time(), r});
 }
 
 void ShowReport::print(const Session::State& s, const Output& out) {
+    for (const Restore& r : restored_) {
+        const auto e = std::find_if(s.entities.begin(), s.entities.end(), [&](const Entity& x) { return x.figure == r.figure.figure; });
+        const std::string why = r.figure.reason == InvalidMotion::NonFinite
+                                    ? "a NaN or an infinity"
+                                    : "kinetic energy " + general(r.figure.energy) + " where at most " + general(r.figure.budget) + " could be supplied";
+        out.info("warning: " + (e != s.entities.end() ? e->name : std::string("a body of no entity")) + ": invalid motion at " +
+                 fixed(r.time) + " s (" + why + "): put back where it was before the step, at rest");
+    }
+    restored_.clear();
     const ShowFlags flags = cvars_ ? showFlags(*cvars_) : ShowFlags{};
     if (flags.timings)
         out.info("af_showTimings: " + std::to_string(steps_) + (steps_ == 1 ? " step, " : " steps, ") + fixed(totalMs_) + " ms" +

@@ -28,7 +28,8 @@ void addShowCVars(CommandSystem& console);
 ShowFlags showFlags(const CVarSystem& cvars);
 
 // What the clock commands (step, run, waitRest) print: they step the world through step(),
-// which times each step, and call print() when done.
+// which times each step and keeps the figures the world's guard put back, and call print() when
+// done, which names those first.
 class ShowReport {
 public:
     // Registers the cvars into `console`, where print() reads them.
@@ -42,6 +43,11 @@ private:
     const CVarSystem* cvars_ = nullptr;
     long steps_ = 0;
     double totalMs_ = 0, longestMs_ = 0;
+    struct Restore {
+        Real time = 0;
+        RestoredFigure figure;
+    };
+    std::vector<Restore> restored_;
 };
 
 }  // namespace af::console

@@ -85,4 +85,13 @@ void applySpringForces(const Joint& joint, std::span<RigidBody> bodies) {
     }
 }
 
+Real springPotentialEnergy(const Joint& joint, std::span<const RigidBody> bodies) {
+    if (joint.type != ConstraintType::Spring) return 0;
+    const joint_detail::Pair pair = joint_detail::pairOf(joint, bodies);
+    const Real length = joint_detail::springLengthOf(joint, pair);
+    const SpringParameters& s = joint.spring;
+    const Real x = std::fabs(length - s.restLength);
+    return (length > s.restLength ? s.stretch : s.compress) * x * x * x / 3;
+}
+
 }  // namespace af

@@ -1,6 +1,7 @@
 #include "warm_start.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace af {
 
@@ -54,6 +55,11 @@ int WarmStartCache::recall(std::span<const std::uint64_t> keys, std::span<LcpRow
         ++found;
     }
     return found;
+}
+
+void WarmStartCache::forgetNonFinite() {
+    std::erase_if(entries_, [](const Entry& e) { return !std::isfinite(e.impulse); });
+    indexChecked_ = false;
 }
 
 }  // namespace af

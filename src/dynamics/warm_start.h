@@ -37,6 +37,8 @@ public:
     }
     // Builds the index by key now (a recall that needs it would otherwise build it).
     void sort() const;
+    // Forgets the entries whose impulse is a NaN or an infinity (a step the world's guard undid).
+    void forgetNonFinite();
 
 private:
     struct Entry {

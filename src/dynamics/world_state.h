@@ -48,6 +48,22 @@ struct World::State {
     std::vector<SolverCounters> islandCounters;
     void startThreads();
     int failures = 0;
+    // The step's guard (world_guard.cpp): the bodies and joint impulses before the step, and the
+    // impulse of each body's applied force and torque over it; the figures that touched in it,
+    // and the energy of each group of them.
+    struct GroupEnergy {
+        bool nonFinite = false;
+        bool dragged = false;
+        Real before = 0, after = 0, work = 0, floor = 0;
+    };
+    struct BeforeStep {
+        std::vector<RigidBody> bodies;
+        std::vector<Real> jointImpulses;
+        std::vector<Real> forceImpulse, torqueImpulse;
+        std::vector<int> touched;  // union-find over figure slots (and one for bodies of none)
+        std::vector<GroupEnergy> energy;  // per root of `touched`
+    };
+    BeforeStep before;
 
     // Collision: shapes and filters, per-body surface data and reach, this step's contacts.
     CollisionWorld collision;
@@ -137,6 +153,11 @@ struct World::State {
     bool wakeTouched();
     void testRest(Real dt);
     void putToRest(int figure);
+
+    void rememberBeforeStep();
+    void joinTouchingForGuard();
+    void restoreInvalidMotion();
+    void restoreFigure(int slot);  // figures.size(): the bodies of no figure
 
     void substep(Real dt);
     void findContacts(Real dt);

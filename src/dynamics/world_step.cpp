@@ -38,7 +38,9 @@ void World::step() {
     }
     const int substeps = std::max(1, s.settings.substeps);
     const Real dt = s.settings.timeStep / substeps;
+    s.rememberBeforeStep();
     for (int i = 0; i < substeps; ++i) s.substep(dt);
+    s.restoreInvalidMotion();
     s.time += s.settings.timeStep;
     s.failures += s.report.failures;
     s.testRest(s.settings.timeStep);
@@ -301,9 +303,11 @@ void World::State::substep(Real dt) {
         island.step(dt, shared);
         return true;
     });
+    joinTouchingForGuard();
     warmStart.clear();
     for (std::size_t k = 0; k < islandCount; ++k) warmStart.add(islands[k].velocityWarmStart());
     settleNewContacts();
+    joinTouchingForGuard();
 }
 
 // The contacts the step started with do not see everything the step did: a vertex left out of a

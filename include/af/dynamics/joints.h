@@ -151,6 +151,9 @@ struct JointRowSettings {
 // Doom's spring force (docs/doom-physics.md §4.3), quadratic in the displacement, added to the bodies'
 // external force and torque. Does nothing for other joint types.
 void applySpringForces(const Joint& joint, std::span<RigidBody> bodies);
+// The energy stored in a spring by Doom's law (the integral of its force without damping:
+// stretch·x³/3 stretched by x, compress·x³/3 compressed by x); 0 for other joint types.
+Real springPotentialEnergy(const Joint& joint, std::span<const RigidBody> bodies);
 
 // Distance between the two bodies' copies of the anchor; slider: the off-axis distance; fixed:
 // the distance of A's centre of mass from where B holds it; spring: how far the length is

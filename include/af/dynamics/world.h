@@ -23,6 +23,10 @@
 //     solved for displacements (not velocities), until converged, for what is left:
 //     older joint errors, limit and contact penetration. Correcting them by moving positions
 //     instead of adding Baumgarte velocity keeps a resting figure from gaining energy.
+//  7. the guard: figures that touched in the step are judged together; where the step left a
+//     NaN or an infinity, or far more kinetic energy than they had and gravity, their springs
+//     and the applied forces could supply, their bodies are put back where they were before the
+//     step, at rest, and the step's report names them (StepReport::restored). Others go on.
 //
 // Rest and wake (docs/doom-physics.md §4.11, rest.h): after each step every awake figure's
 // RestMonitor is asked. Figures that touch each other form a group that rests only when all of
@@ -45,6 +49,7 @@
 #include "af/dynamics/rigid_body.h"
 #include "af/figure/figure.h"
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
@@ -107,18 +112,35 @@ struct WorldSettings {
     int threads = 1;
 };
 
-// What the last step did.
-struct StepReport {
-    int rows = 0;       // velocity rows of the last substep
-    Real residual = 0;  // LCP residual of the last velocity solve
-    int failures = 0;   // solves of this step that did not report Solved
-};
-
 // A figure in a world. Ids are never reused: an id names the same figure while others are spawned
 // and removed, and a removed figure's id is refused (std::invalid_argument) by every call.
 struct FigureId {
     int value = -1;
     friend auto operator<=>(FigureId, FigureId) = default;
+};
+
+// Why a step's motion of a figure was found invalid (docs/solver.md, "Invalid motion").
+enum class InvalidMotion : std::uint8_t {
+    NonFinite,   // a NaN or an infinity in a pose or a velocity
+    EnergyGain,  // kinetic energy beyond twice what the figure had and the step could supply
+};
+
+// A figure whose motion a step made invalid: it was put back where it was before that step, at
+// rest, with its drag let go; figures it did not touch in the step were not changed. (Bodies of
+// no figure, from the bodies-and-joints constructor, are put back alike, under figure value −1.)
+struct RestoredFigure {
+    FigureId figure;
+    InvalidMotion reason = InvalidMotion::NonFinite;
+    Real energy = 0;  // EnergyGain: the kinetic and spring energy the step ended with
+    Real budget = 0;  // EnergyGain: what it had before and the step could supply
+};
+
+// What the last step did.
+struct StepReport {
+    int rows = 0;       // velocity rows of the last substep
+    Real residual = 0;  // LCP residual of the last velocity solve
+    int failures = 0;   // solves of this step that did not report Solved
+    std::vector<RestoredFigure> restored;  // each reported in the step that found it, once
 };
 
 // A body of a figure: the figure and the body's index in its definition.
