@@ -247,3 +247,26 @@ TEST(BoxContact, FlatBoxOfZeroHeightRestsOnItsFace) {
 
 }  // namespace
 }  // namespace af
+
+namespace af {
+namespace {
+
+// deepestOverlap: the deepest reach of any shape into any static; statics whose bounding boxes
+// miss a shape's are skipped, which must not lose an overlap.
+TEST(DeepestOverlap, IsTheDeepestPenetrationOfAnyShapeIntoAnyStatic) {
+    const std::vector<Polytope> statics{makeBox(Vec3(-100, -100, -16), Vec3(100, 100, 0)),  // floor
+                                        makeBox(Vec3(2, -64, 0), Vec3(100, 64, 80))};     // wall
+    const std::vector<Polytope> shapes{test::box(Vec3(1, 1, 1)), test::box(Vec3(2, 2, 2))};
+    const auto overlap = [&](const Vec3& a, const Vec3& b) {
+        const std::vector<RigidPose> poses{test::pose(a), test::pose(b)};
+        return deepestOverlap(shapes, poses, statics);
+    };
+    EXPECT_EQ(overlap(Vec3(0, 0, 10), Vec3(-10, 0, 10)), 0) << "both clear";
+    EXPECT_NEAR(overlap(Vec3(0, 0, 0.75), Vec3(-10, 0, 10)), 0.25, 1e-12) << "the first 0.25 into the floor";
+    EXPECT_NEAR(overlap(Vec3(0, 0, 10), Vec3(0.5, 0, 40)), 0.5, 1e-12) << "the second 0.5 into the wall";
+    EXPECT_NEAR(overlap(Vec3(0, 0, 0.75), Vec3(0.5, 0, 40)), 0.5, 1e-12) << "the deeper of the two";
+    EXPECT_NEAR(overlap(Vec3(0, 0, 10), Vec3(-10, 0, 79.5 + 2)), 0, 1e-12) << "above the wall's top and beside it";
+}
+
+}  // namespace
+}  // namespace af

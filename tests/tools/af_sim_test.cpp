@@ -270,6 +270,28 @@ TEST(AfSim, ALaterRootReplacesTheFigureOfAnEarlierOne) {
     EXPECT_NE(alone.out.find("ragdoll_humanoid"), std::string::npos) << alone.out;
 }
 
+// A wall beside (0, 0), where the figure is dropped: the ground under the drop point is the floor,
+// but the leaning figure reaches into the wall. It is lifted until no body is inside a brush, so
+// it starts whole and lands with its joints closed (started inside, the projection would push
+// the bodies out of the wall one by one and open the joints by units).
+TEST(AfSim, AFigureThatWouldStartInsideABrushIsLiftedClearOfIt) {
+    const std::string plane = " ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"textures/af/floor\" 0 0 0\n";
+    const auto brush = [&](const std::vector<std::string>& planes) {
+        std::string text = "{\n brushDef3\n {\n";
+        for (const std::string& p : planes) text += "  ( " + p + " )" + plane;
+        return text + " }\n}\n";
+    };
+    const std::filesystem::path map = scratch("wall.map");
+    std::ofstream(map) << "Version 2\n{\n\"classname\" \"worldspawn\"\n"
+                       << brush({"0 0 -1 -16", "0 0 1 0", "0 -1 0 -512", "1 0 0 -512", "0 1 0 -512", "-1 0 0 -512"})
+                       << brush({"0 0 -1 0", "0 0 1 -80", "0 -1 0 -64", "1 0 0 -100", "0 1 0 -64", "-1 0 0 2"}) << "}\n";
+    const SimRun run = afSim("--map " + map.string() + " --seconds 4 --json");
+    ASSERT_EQ(run.status, 0) << run.out;
+    const nlohmann::json j = nlohmann::json::parse(run.out);
+    EXPECT_LT(j["max_joint_error"].get<double>(), 1e-6);
+    EXPECT_LT(j["max_penetration"].get<double>(), 0.5);
+}
+
 TEST(AfSim, FramesWritesAContactSheetOfTheFall) {
     const std::filesystem::path sheet = scratch("frames.png");
     std::filesystem::remove(sheet);

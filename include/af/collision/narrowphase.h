@@ -38,6 +38,7 @@
 #include "af/geometry/polytope.h"
 
 #include <memory>
+#include <span>
 
 namespace af {
 
@@ -74,5 +75,11 @@ Manifold collide(const Polytope& a, const RigidPose& poseA, const Polytope& b, c
 /// plane's normal, the points are A's vertices closer to the plane than `margin` (at most four),
 /// and each point's id is its vertex index.
 Manifold collideWithPlane(const Polytope& a, const RigidPose& poseA, const Plane& plane, Real margin);
+
+/// How deep any of `shapes` (body frames, placed at `poses`) reaches into any of `statics` (world
+/// space, e.g. a map's brushes): the largest penetration of their contact manifolds, 0 when none
+/// overlaps. What a spawn asks before it lets a figure go (Doom's af_testSolid asks it of a
+/// ragdoll started from an animated pose).
+Real deepestOverlap(std::span<const Polytope> shapes, std::span<const RigidPose> poses, std::span<const Polytope> statics);
 
 }  // namespace af
