@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 
@@ -154,12 +155,24 @@ void printTotals(const std::vector<DropResult>& results, Real seconds, double wa
                 failedDrops, wall);
 }
 
+// With --list, each drop's row is printed as soon as the drops before it are done, in seed
+// order: a long soak shows its progress, and what it found so far survives an interruption.
 std::vector<DropResult> runAll(const af::soak::SoakInputs& inputs, const Options& o) {
     std::vector<DropResult> results(static_cast<std::size_t>(o.drops));
+    std::vector<bool> done(results.size());
+    std::size_t printed = 0;
+    std::mutex mutex;
     std::atomic<int> next = 0;
+    if (o.list) printHeader();
     auto worker = [&] {
-        for (int i = next++; i < o.drops; i = next++)
-            results[static_cast<std::size_t>(i)] = af::soak::runDrop(inputs, o.seed + static_cast<std::uint64_t>(i));
+        for (int i = next++; i < o.drops; i = next++) {
+            DropResult r = af::soak::runDrop(inputs, o.seed + static_cast<std::uint64_t>(i));
+            const std::lock_guard lock(mutex);
+            results[static_cast<std::size_t>(i)] = std::move(r);
+            done[static_cast<std::size_t>(i)] = true;
+            for (; o.list && printed < done.size() && done[printed]; ++printed) printRow("drop", results[printed]);
+            std::fflush(stdout);
+        }
     };
     std::vector<std::jthread> pool;
     for (int j = 1; j < o.jobs; ++j) pool.emplace_back(worker);
@@ -199,11 +212,7 @@ int soak(const Options& o) {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<DropResult> results = runAll(inputs, o);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (o.list) {
-        printHeader();
-        for (const DropResult& r : results) printRow("drop", r);
-        std::printf("\n");
-    }
+    if (o.list) std::printf("\n");
     printTable(results);
     printTotals(results, o.seconds, wall);
     const bool failed = std::any_of(results.begin(), results.end(), [](const DropResult& r) { return r.failed() || !r.rejected.empty(); });
