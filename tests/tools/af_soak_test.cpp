@@ -18,7 +18,8 @@ struct SoakRun {
 
 SoakRun afSoak(const std::string& arguments) {
     SoakRun run;
-    const std::string command = std::string(AF_SOAK_PATH) + " " + arguments + " 2>&1";
+    std::string command = AF_SOAK_PATH;
+    command.append(" ").append(arguments).append(" 2>&1");
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return run;
     std::array<char, 4096> buffer{};
