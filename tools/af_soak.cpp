@@ -113,6 +113,7 @@ void printTable(const std::vector<DropResult>& results) {
     const std::pair<const char*, std::function<bool(const DropResult&)>> failures[] = {
         {"NaN/inf", [](const DropResult& r) { return r.nonFinite; }},
         {"explosion", [](const DropResult& r) { return r.exploded(); }},
+        {"put back", [](const DropResult& r) { return r.restored > 0; }},
         {"threw", [](const DropResult& r) { return !r.threw.empty(); }},
         {"refused", [](const DropResult& r) { return !r.rejected.empty(); }},
     };
@@ -134,11 +135,12 @@ void printTable(const std::vector<DropResult>& results) {
 }
 
 void printTotals(const std::vector<DropResult>& results, Real seconds, double wall) {
-    int nan = 0, explosions = 0, threw = 0, refused = 0, rested = 0, failedDrops = 0, bodies = 0, slow = 0;
+    int nan = 0, explosions = 0, putBack = 0, threw = 0, refused = 0, rested = 0, failedDrops = 0, bodies = 0, slow = 0;
     long failedSolves = 0, steps = 0;
     for (const DropResult& r : results) {
         nan += r.nonFinite;
         explosions += r.exploded();
+        putBack += r.restored > 0;
         threw += !r.threw.empty();
         refused += !r.rejected.empty();
         rested += r.restTime.has_value();
@@ -148,9 +150,9 @@ void printTotals(const std::vector<DropResult>& results, Real seconds, double wa
         bodies += r.bodies;
         slow += r.tooSlow;
     }
-    std::printf("totals: %zu drops, %d bodies, %ld steps, %d NaN/inf, %d explosions, %d threw, %d refused, "
+    std::printf("totals: %zu drops, %d bodies, %ld steps, %d NaN/inf, %d explosions, %d put back by the guard, %d threw, %d refused, "
                 "%d rested (%zu still moving at %s s), %d too slow, %ld failed solves in %d drops, wall %.1f s\n",
-                results.size(), bodies, steps, nan, explosions, threw, refused, rested,
+                results.size(), bodies, steps, nan, explosions, putBack, threw, refused, rested,
                 results.size() - static_cast<std::size_t>(rested + slow), number(seconds).c_str(), slow, failedSolves,
                 failedDrops, wall);
 }

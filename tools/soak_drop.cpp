@@ -136,6 +136,7 @@ void measure(World& world, const SoakInputs& inputs, DropResult& result) {
         const Clock::time_point stepStart = Clock::now();
         world.step();
         ++result.steps;
+        result.restored += static_cast<int>(world.lastStep().restored.size());
         const Clock::time_point stepEnd = Clock::now();
         result.slowestStep = std::max(result.slowestStep, std::chrono::duration<Real>(stepEnd - stepStart).count());
         if (!finite(world)) {

@@ -43,6 +43,9 @@ struct DropResult {
     std::string rejected;
     std::string threw;
 
+    // Figures the world's guard put back (StepReport::restored): a NaN or an explosion inside a
+    // step, caught there and undone; the drop goes on, but it counts as one.
+    int restored = 0;
     bool nonFinite = false;        // a NaN or an infinity in a body's pose or velocity
     Real nonFiniteTime = 0;        // s, when first seen (the drop stops there)
     // max over steps of KE / (supply + slack), where supply = start KE + the springs' start energy
@@ -64,7 +67,7 @@ struct DropResult {
     bool tooSlow = false;          // stopped by SoakInputs::wallBudget
 
     bool exploded() const { return energyRatio > kExplosionRatio; }
-    bool failed() const { return nonFinite || exploded() || !threw.empty(); }
+    bool failed() const { return nonFinite || restored > 0 || exploded() || !threw.empty(); }
 };
 
 DropResult runDrop(const SoakInputs& inputs, std::uint64_t seed);
