@@ -66,7 +66,11 @@ ViewRun afView(const std::string& script) {
     std::ofstream(dir / "script.cfg") << script;
     ViewRun run;
     run.picture = dir / "view.png";
-    const std::string command = "xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(AF_VIEW_PATH) + " --root '" + AF_SOURCE_DIR +
+    // Under AddressSanitizer (CI's clang build) leak checking is off for af-view alone: GLFW's
+    // glfwTerminate unloads the X and Mesa libraries it opened, and what they still held is then
+    // reported as leaked from an "<unknown module>", which no suppression can name (a window
+    // program that skips glfwTerminate reports nothing). Memory errors are still caught.
+    const std::string command = "ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(AF_VIEW_PATH) + " --root '" + AF_SOURCE_DIR +
                                 "' --exec '" + (dir / "script.cfg").string() + "' --screenshot '" + run.picture.string() +
                                 "' --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " > '" + (dir / "out").string() +
                                 "' 2> '" + (dir / "err").string() + "'";

@@ -139,8 +139,11 @@ ViewMarks Viewer::marks() const {
     if (skeleton && skeleton->asBool())
         for (const FigureId f : world.figureIds()) {
             const Skeleton s = world.skeleton(f);
+            // Bones from a root joint are left out: an md5's root is the model's origin (Doom's
+            // "origin" joint), which no body drives and which stays where the figure was spawned.
             for (std::size_t j = 0; j < s.size(); ++j)
-                if (s.parents[j] >= 0) m.skeleton.emplace_back(s.joints[std::size_t(s.parents[j])].position, s.joints[j].position);
+                if (const int parent = s.parents[j]; parent >= 0 && s.parents[std::size_t(parent)] >= 0)
+                    m.skeleton.emplace_back(s.joints[std::size_t(parent)].position, s.joints[j].position);
         }
     if (const auto pull = drag_->pull()) m.dragPull.push_back(*pull);
     return m;
