@@ -86,6 +86,7 @@ ViewRun afView(const std::string& script) {
 struct Bodies {
     std::vector<std::string> names;
     std::vector<Vec3> centres;
+    std::vector<Vec3> contacts;  // the last step's contact points
 };
 Bodies bodiesAfter(const std::string& script) {
     af::console::CommandSystem console;
@@ -95,6 +96,8 @@ Bodies bodiesAfter(const std::string& script) {
     for (const af::FigureId f : session.world().figureIds())
         for (const auto& body : session.world().definition(f).bodies) b.names.push_back(body.name);
     for (const af::RigidPose& p : session.world().bodyPoses()) b.centres.push_back(p.position);
+    for (const af::BodyContact& c : session.world().contacts())
+        for (int k = 0; k < c.manifold.count; ++k) b.contacts.push_back(c.manifold.points[std::size_t(k)].point);
     return b;
 }
 
@@ -131,6 +134,13 @@ public:
         const int r = (p >> 16) & 255, g = (p >> 8) & 255, b = p & 255;
         const int hi = std::max({r, g, b}), lo = std::min({r, g, b});
         return hi == 0 ? 0 : double(hi - lo) / hi;
+    }
+    // The contact overlay's red (view_contacts), which no body, brush or other mark is.
+    bool contactRedAt(int x, int y) const {
+        if (x < 0 || y < 0 || x >= width() || y >= height()) return false;
+        const std::uint32_t p = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(surface_) +
+                                                                        std::size_t(y) * std::size_t(cairo_image_surface_get_stride(surface_)))[x];
+        return ((p >> 16) & 255) > 200 && ((p >> 8) & 255) < 60 && (p & 255) < 60;
     }
     bool figureAt(int x, int y) const { return x >= 0 && y >= 0 && x < width() && y < height() && saturation(x, y) > 0.3; }
     // Body colour within `r` pixels of (x, y).
@@ -184,6 +194,28 @@ TEST(AfView, ScreenshotShowsTheFigureWhereItsBodiesProject) {
         }
     EXPECT_GT(far, 1000);
     EXPECT_EQ(coloured, 0) << "figure-coloured pixels far from every body";
+}
+
+TEST(AfView, ContactOverlayMarksWhereTheFeetTouchTheFloor) {
+    SKIP_WITHOUT_XVFB();
+    const ViewRun run = afView(kSpawn + kNoSkeleton + kCamera.command() + "view_contacts 1\n");
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    const Picture picture(run.picture);
+    ASSERT_TRUE(picture.ok());
+    const Bodies bodies = bodiesAfter(kSpawn);
+    ASSERT_GE(bodies.contacts.size(), 2u) << "the standing figure touches the floor";
+    int red = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) red += picture.contactRedAt(x, y);
+    for (const Vec3& c : bodies.contacts) {
+        const Eigen::Vector2d p = kCamera.project(c);
+        bool marked = false;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) marked = marked || picture.contactRedAt(int(p.x()) + dx, int(p.y()) + dy);
+        EXPECT_TRUE(marked) << "contact at " << c.transpose() << " (pixel " << p.transpose() << ") is not marked";
+    }
+    // Dots and short normals: a few pixels around each point, not a red picture.
+    EXPECT_LT(red, int(bodies.contacts.size()) * 200);
 }
 
 // "drag point (x y z) target (x y z) distance d" as view_dragInfo prints it.

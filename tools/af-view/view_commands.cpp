@@ -35,6 +35,8 @@ std::string format(const Vec3& v) {
 void Viewer::registerViewCommands() {
     console::CommandSystem& c = *console_;
     c.addCVar(console::boolCVar("view_skeleton", true, "draw the skeleton the bodies drive"));
+    c.addCVar(console::boolCVar("view_contacts", false, "draw the contact points of the last step, with their normals (red)"));
+    c.addCVar(console::boolCVar("view_rest", false, "grey out the figures at rest"));
     c.addCommand({"view_camera", "[EX EY EZ TX TY TZ [FOVY]]", "print the camera (eye, target, vertical field of view), or place it", 0, 7,
                   [this](const CommandArgs& a, const Output& out) {
                       if (a.argc() == 1) {

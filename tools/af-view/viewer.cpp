@@ -24,6 +24,8 @@ constexpr int kMaxStepsPerFrame = 4;  // a slow frame drops time rather than fal
 constexpr double kStepsPerSecond = 60;  // Doom's frame; af_timeScale scales each step's length
 constexpr double kConsoleHeight = 240;  // framebuffer pixels, at most 40 % of the window
 
+constexpr Real kContactNormalLength = 4;  // units
+
 render::Colour brighter(const render::Colour& c) {
     return {std::min(1.0f, c[0] * 1.35f + 0.1f), std::min(1.0f, c[1] * 1.35f + 0.1f), std::min(1.0f, c[2] * 1.35f + 0.1f)};
 }
@@ -117,7 +119,37 @@ render::RenderScene Viewer::scene() const {
             grabbed.colour = brighter(*grabbed.colour);
         }
     }
+    addViewOverlays(scene);
     return scene;
+}
+
+bool Viewer::cvarOn(std::string_view name) const {
+    const console::CVar* v = console_->cvars().find(name);
+    return v && v->asBool();
+}
+
+void Viewer::addViewOverlays(render::RenderScene& scene) const {
+    const World& world = session_->world();
+    if (cvarOn("view_rest")) {
+        // A figure at rest fades toward grey, so that what still moves stands out.
+        std::size_t i = 0;
+        for (const FigureId f : world.figureIds()) {
+            const bool resting = world.figureAtRest(f);
+            for (std::size_t b = 0; b < world.definition(f).bodies.size() && i < scene.bodies.size(); ++b, ++i)
+                if (resting && scene.bodies[i].colour) {
+                    render::Colour& c = *scene.bodies[i].colour;
+                    const float grey = (c[0] + c[1] + c[2]) / 3;
+                    for (float& channel : c) channel = 0.3f * channel + 0.7f * grey;
+                }
+        }
+    }
+    if (cvarOn("view_contacts"))
+        for (const BodyContact& contact : world.contacts())
+            for (int k = 0; k < contact.manifold.count; ++k) {
+                const Vec3& p = contact.manifold.points[std::size_t(k)].point;
+                scene.overlay.dots.push_back({p, kContactColour, 3});
+                scene.overlay.lines.push_back({p, p + kContactNormalLength * contact.manifold.normal, kContactColour, 1.5, true});
+            }
 }
 
 OrbitCamera& Viewer::camera() {
@@ -200,8 +232,21 @@ void Viewer::drawControls() {
     ImGui::SetNextItemWidth(160);
     if (ImGui::SliderFloat("af_timeScale", &scale, 0.05f, 1.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
         console_->execute("set af_timeScale " + std::to_string(scale), "slider");
-    bool skeleton = console_->cvars().find("view_skeleton")->asBool();
-    if (ImGui::Checkbox("skeleton", &skeleton)) console_->execute(std::string("set view_skeleton ") + (skeleton ? "1" : "0"), "checkbox");
+    // The switches are cvars, so the console and scripts set the same things.
+    const auto toggle = [this](const char* label, const char* cvar) {
+        bool on = cvarOn(cvar);
+        if (ImGui::Checkbox(label, &on)) console_->execute(std::string("set ") + cvar + (on ? " 1" : " 0"), "checkbox");
+    };
+    toggle("skeleton", "view_skeleton");
+    ImGui::SameLine();
+    toggle("contacts", "view_contacts");
+    ImGui::SameLine();
+    toggle("grey at rest", "view_rest");
+    toggle("constraints", "af_showConstraints");
+    ImGui::SameLine();
+    toggle("limits", "af_showLimits");
+    ImGui::SameLine();
+    toggle("names", "af_showBodyNames");
     const World& world = session_->world();
     ImGui::Text("t = %.2f s   %s", double(world.time()), world.atRest() ? "at rest" : "moving");
     ImGui::End();
