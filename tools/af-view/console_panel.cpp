@@ -76,8 +76,6 @@ void ConsolePanel::draw(console::CommandSystem& console, const console::Session&
     ImGui::EndChild();
 
     ImGui::PushItemWidth(-1);
-    if (refocus_) ImGui::SetKeyboardFocusHere();
-    refocus_ = false;
     const ImGuiInputTextFlags flags = ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CallbackHistory | ImGuiInputTextFlags_CallbackCompletion;
     const auto callback = [](ImGuiInputTextCallbackData* data) { return static_cast<ConsolePanel*>(data->UserData)->onInput(*data); };
     if (ImGui::InputText("##input", &input_, flags, callback, this)) {
@@ -91,6 +89,12 @@ void ConsolePanel::draw(console::CommandSystem& console, const console::Session&
         historyPosition_ = -1;
         refocus_ = true;
     }
+    // The input line keeps the keyboard: after a line is run, and whenever the panel is clicked
+    // and nothing else in it is being edited.
+    ImGui::SetItemDefaultFocus();
+    if (refocus_ || (ImGui::IsWindowFocused(ImGuiFocusedFlags_RootAndChildWindows) && !ImGui::IsAnyItemActive() && !ImGui::IsMouseDown(0)))
+        ImGui::SetKeyboardFocusHere(-1);
+    refocus_ = false;
     ImGui::PopItemWidth();
     ImGui::End();
     console_ = nullptr;

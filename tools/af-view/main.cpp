@@ -54,6 +54,7 @@ int run(Options& o) {
         std::cout << "screenshot " << o.screenshot << '\n';
         return errors > 0 ? 1 : 0;
     }
+    viewer.setPlaying(true);  // a window, like Doom, shows the world running
     while (!window.closeRequested()) {
         viewer.frame();
         window.present();

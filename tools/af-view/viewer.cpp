@@ -63,11 +63,12 @@ Viewer::~Viewer() {
 std::size_t Viewer::start() {
     drag_.reset();
     session_.reset();
-    // What the console prints goes to the panel and to the terminal (a log of the session).
+    // What the console prints goes to the panel and to the terminal (a log of the session, line
+    // by line as it happens, also when the terminal is a file).
     console_ = std::make_unique<console::CommandSystem>(console::Output(
         [this](std::string_view line) {
             panel_.info(line);
-            std::cout << line << '\n';
+            std::cout << line << std::endl;
         },
         [this](std::string_view line) {
             panel_.error(line);
@@ -77,7 +78,6 @@ std::size_t Viewer::start() {
     session_ = std::make_unique<console::Session>(startup_.roots, *console_);
     drag_ = std::make_unique<MouseDrag>(*console_, *session_);
     registerViewCommands();
-    playing_ = false;
 
     std::size_t errors = 0;
     const auto run = [&](const std::string& text, std::string_view source) { errors += console_->execute(text, source).errors; };
@@ -248,7 +248,7 @@ void Viewer::drawControls() {
     ImGui::SameLine();
     toggle("names", "af_showBodyNames");
     const World& world = session_->world();
-    ImGui::Text("t = %.2f s   %s", double(world.time()), world.atRest() ? "at rest" : "moving");
+    ImGui::Text("t = %.2f s   %s", double(world.time()), world.figureIds().empty() ? "no figures" : world.atRest() ? "at rest" : "moving");
     ImGui::End();
 }
 

@@ -40,7 +40,8 @@ public:
     // One frame: input, the clock when playing, the 3D view, labels, and the panels when shown.
     void frame();
 
-    console::CommandSystem& console() { return *console_; }
+    // The clock runs while playing (the Play button); Reset keeps it running or paused.
+    void setPlaying(bool playing) { playing_ = playing; }
     // The scene as it is now, the body colours the view gives them included.
     render::RenderScene scene() const;
     OrbitCamera& camera();
