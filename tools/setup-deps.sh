@@ -10,6 +10,8 @@ packages=(
     libcli11-dev nlohmann-json3-dev
     libcairo2-dev libfontconfig-dev
     libreadline-dev
+    libglfw3-dev libimgui-dev libgl-dev
+    xvfb xauth libgl1-mesa-dri
 )
 
 missing=()

@@ -53,6 +53,11 @@ Session::~Session() = default;
 const World& Session::world() const { return state_->world; }
 const std::vector<Polytope>& Session::statics() const { return state_->statics; }
 std::optional<Real> Session::floorZ() const { return state_->floorZ; }
+std::string Session::entityName(FigureId figure) const {
+    for (const Entity& e : state_->entities)
+        if (e.figure == figure) return e.name;
+    return {};
+}
 std::vector<std::string> Session::bodyNames(std::string_view entity) const {
     std::vector<std::string> names;
     for (const Entity& e : state_->entities)

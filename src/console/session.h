@@ -32,6 +32,8 @@ public:
     // The body names of the entity called `entity` (ignoring case), in body order; none when
     // there is no such entity (tab completion).
     std::vector<std::string> bodyNames(std::string_view entity) const;
+    // The name of the entity whose figure is `figure`; empty when none is (a viewer's pick).
+    std::string entityName(FigureId figure) const;
     // Every later write of a map goes through this hook (tests: a save cut short).
     void setWriteFaultHook(WriteFaultHook hook);
 
