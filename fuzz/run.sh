@@ -51,7 +51,7 @@ for target in $targets; do
     else
         failed="$failed $target"
     fi
-    grep -E '^#[0-9]+ +DONE' "$log" || tail -n 30 "$log"
+    grep -E '^#[0-9]+[[:space:]]+DONE' "$log" || tail -n 30 "$log"
     grep -E '^stat::number_of_executed_units' "$log" || true
 done
 
