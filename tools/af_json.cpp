@@ -22,11 +22,11 @@ double number(Real v) {
 
 Json triple(const Real3& t) { return Json::array({number(t[0]), number(t[1]), number(t[2])}); }
 
-// The mask as its names, in the writer's order.
-Json contentsJson(ContentsMask mask) {
+// The mask as its names, in the writer's order, then the names of later games kept as written.
+Json contentsJson(ContentsMask mask, const std::vector<std::string>& unknown) {
     Json names = Json::array();
-    if (mask == 0) return names;
-    const std::string text = contentsToString(mask);
+    if (mask == 0 && unknown.empty()) return names;
+    const std::string text = contentsToString(mask, unknown);
     for (std::size_t start = 0; start < text.size();) {
         const std::size_t comma = text.find(", ", start);
         names.push_back(text.substr(start, comma - start));
@@ -52,8 +52,8 @@ Json settingsJson(const AFSettings& s) {
             {"minMoveTime", number(s.minMoveTime)},
             {"maxMoveTime", number(s.maxMoveTime)},
             {"totalMass", number(s.totalMass)},
-            {"contents", contentsJson(s.contents)},
-            {"clipMask", contentsJson(s.clipMask)},
+            {"contents", contentsJson(s.contents, s.unknownContents)},
+            {"clipMask", contentsJson(s.clipMask, s.unknownClipMask)},
             {"selfCollision", s.selfCollision},
             {"fastEval", s.extensions.fastEval}};
 }
@@ -85,8 +85,8 @@ Json bodyJson(const AFBody& b) {
               {"friction", {{"linear", number(b.linearFriction)},
                             {"angular", number(b.angularFriction)},
                             {"contact", number(b.contactFriction)}}},
-              {"contents", contentsJson(b.contents)},
-              {"clipMask", contentsJson(b.clipMask)},
+              {"contents", contentsJson(b.contents, b.unknownContents)},
+              {"clipMask", contentsJson(b.clipMask, b.unknownClipMask)},
               {"selfCollision", b.selfCollision},
               {"containedJoints", b.containedJoints}};
     j["frictionDirection"] = b.frictionDirection ? toJson(*b.frictionDirection) : Json();

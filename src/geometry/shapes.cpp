@@ -106,8 +106,11 @@ const char* axisName(int k) { return k == 0 ? "x" : (k == 1 ? "y" : "z"); }
 void warnInvertedBounds(const ShapeSpec& spec, std::vector<std::string>& warnings) {
     for (int k = 0; k < 3; ++k) {
         if (spec.v1[k] > spec.v2[k]) {
-            warnings.push_back(std::string("bounds inverted on ") + axisName(k) +
-                               " (min > max); the shape is built mirrored, with positive volume");
+            // Made in place: GCC 12 at -O3 misreads the move of a pushed temporary string as a
+            // read past its small-string buffer (-Wstringop-overread).
+            std::string& warning = warnings.emplace_back("bounds inverted on ");
+            warning += axisName(k);
+            warning += " (min > max); the shape is built mirrored, with positive volume";
         }
     }
 }
@@ -254,7 +257,7 @@ BodyShape buildShape(const ShapeSpec& spec) {
     if (spec.kind == ShapeKind::bone) {
         const Real length = (spec.v2 - spec.v1).norm();
         if (length == 0) {
-            body.warnings.push_back("bone has zero length (v1 = v2); using the identity frame");
+            body.warnings.emplace_back("bone has zero length (v1 = v2); using the identity frame");
         }
         body.rotation = boneRotation(spec.v1, spec.v2);
         body.local = makeBone(length, spec.width);

@@ -99,8 +99,11 @@ TEST(Session, ADraggedHandIsHeldAtTheTargetWithTheFigureHangingBelow) {
     const int hand = world.definition(id).findBody("rhand");
     const Vec3 held = world.body({id, hand}).position;
     EXPECT_LT((held - Vec3(0, 0, 40)).norm(), 2) << held.transpose();
-    for (int b = 0; b < world.range(id).bodyCount; ++b)
-        if (b != hand) EXPECT_LT(world.body({id, b}).position.z(), held.z() + 1) << "body " << b << " hangs below the hand";
+    for (int b = 0; b < world.range(id).bodyCount; ++b) {
+        if (b != hand) {
+            EXPECT_LT(world.body({id, b}).position.z(), held.z() + 1) << "body " << b << " hangs below the hand";
+        }
+    }
     EXPECT_LT(world.maxJointError(), 1e-9);
     ASSERT_TRUE(c.run("drag off\nwaitRest 5").ok()) << c.errors;
 }

@@ -178,7 +178,9 @@ TEST(MapWriter, WritesDoomsEditorLayout) {
     patch.info = {1, 2, 0, 0, 0};
     patch.rows = {{{0, 0, 0, 0, 0}, {1, 2, 3, 0.5, 1}}};
     world.primitives.push_back({patch, {}});
-    world.primitives.push_back({RawPrimitive{"( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) x 0 0 0 1 1"}, {}});
+    // Assigned in place: GCC 12 warns falsely (-Wmaybe-uninitialized) about the patch alternative
+    // when a primitive holding raw text is moved into the vector.
+    world.primitives.emplace_back().data = RawPrimitive{"( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) x 0 0 0 1 1"};
     m.entities.emplace_back().set("classname", "light");
     EXPECT_EQ(writeMapFile(m),
               "Version 2\n"

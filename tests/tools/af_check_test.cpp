@@ -134,6 +134,19 @@ TEST(AfCheck, JsonHasOneRecordPerFileWithTheFullData) {
     EXPECT_EQ(d["message"], "density must be greater than 0, found -1 (a body without mass cannot be simulated)");
 }
 
+// Contents and clipMask names of later games are kept for the writer, so the data shows them too,
+// after the names Doom 3 knows, as the writer puts them.
+TEST(AfCheck, JsonListsContentsNamesOfLaterGames) {
+    const ToolRun r = afCheck("--json tests/golden/family_contents_names.af");
+    EXPECT_EQ(r.status, 0) << r.err;
+    const auto decl = nlohmann::json::parse(r.out)["decls"][0];
+    EXPECT_EQ(decl["settings"]["contents"], nlohmann::json::array({"corpse", "movableclip"}));
+    EXPECT_EQ(decl["settings"]["clipMask"], nlohmann::json::array({"solid", "monsterclip", "flyerhiveclip"}));
+    // Doom 3's moveableclip, which every body's clipMask has, is not Quake 4's movableclip.
+    EXPECT_EQ(decl["bodies"][0]["clipMask"], nlohmann::json::array({"moveableclip", "movableclip"}));
+    EXPECT_EQ(decl["bodies"][1]["contents"], nlohmann::json::array({"body", "FlyerHiveClip"}));
+}
+
 // A hand-written file and its canonical form mean the same, so their data must be equal.
 TEST(AfCheck, SameMeaningGivesSameJson) {
     const auto a = nlohmann::json::parse(afCheck("--json tests/golden/every_keyword.af").out);
