@@ -8,6 +8,8 @@
 #include "af/text/strings.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -54,6 +56,14 @@ std::string countProblem(const CommandDefinition& command, std::size_t given) {
 const std::string& CommandArgs::argv(std::size_t i) const {
     static const std::string kNone;
     return i < words_.size() ? words_[i] : kNone;
+}
+
+std::optional<double> CommandArgs::number(std::size_t i) const {
+    const std::string& word = argv(i);
+    double v = 0;
+    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), v);
+    if (ec != std::errc() || end != word.data() + word.size() || !std::isfinite(v)) return std::nullopt;
+    return v;
 }
 
 std::string CommandArgs::joined(std::size_t from) const {

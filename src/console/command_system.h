@@ -52,6 +52,8 @@ public:
     const std::string& argv(std::size_t i) const;
     // Words `from`… joined by single spaces (Doom's Args()), so `set name a b` sets "a b".
     std::string joined(std::size_t from) const;
+    // argv(i) as a finite number; none for a word that is anything else, whole.
+    std::optional<double> number(std::size_t i) const;
     const std::vector<std::string>& words() const { return words_; }
 
 private:

@@ -5,7 +5,6 @@
 
 #include "af/text/strings.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 
@@ -15,15 +14,8 @@ namespace {
 
 using State = Session::State;
 
-std::optional<Real> number(const std::string& word) {
-    double v = 0;
-    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), v);
-    if (ec != std::errc() || end != word.data() + word.size() || !std::isfinite(v)) return std::nullopt;
-    return v;
-}
-
 std::optional<Vec3> vector(const CommandArgs& args, std::size_t first) {
-    const auto x = number(args.argv(first)), y = number(args.argv(first + 1)), z = number(args.argv(first + 2));
+    const auto x = args.number(first), y = args.number(first + 1), z = args.number(first + 2);
     if (!x || !y || !z) return std::nullopt;
     return Vec3(*x, *y, *z);
 }
@@ -127,7 +119,7 @@ void registerSessionCommands(State& s, CommandSystem& console) {
                         [&s](const CommandArgs& a, const Output& out) {
                             int n = 1;
                             if (a.argc() == 2) {
-                                const auto v = number(a.argv(1));
+                                const auto v = a.number(1);
                                 if (!v || *v < 0 || *v > 1e6 || *v != std::floor(*v)) return Status::failure("step: N must be a whole number of steps");
                                 n = static_cast<int>(*v);
                             }
@@ -138,7 +130,7 @@ void registerSessionCommands(State& s, CommandSystem& console) {
                         {}});
     console.addCommand({"run", "SECONDS", "advance the world this many seconds", 1, 1,
                         [&s](const CommandArgs& a, const Output& out) {
-                            const auto v = number(a.argv(1));
+                            const auto v = a.number(1);
                             if (!v || *v < 0 || *v > 3600) return Status::failure("run: SECONDS must be a number from 0 to 3600");
                             advance(s, static_cast<int>(std::ceil(*v / s.world.settings().timeStep - 1e-9)));
                             s.show.print(s, out);
@@ -149,7 +141,7 @@ void registerSessionCommands(State& s, CommandSystem& console) {
                         [&s](const CommandArgs& a, const Output& out) {
                             Real most = 10;
                             if (a.argc() == 2) {
-                                const auto v = number(a.argv(1));
+                                const auto v = a.number(1);
                                 if (!v || *v < 0 || *v > 3600) return Status::failure("waitRest: MAX_SECONDS must be a number from 0 to 3600");
                                 most = *v;
                             }

@@ -1,5 +1,7 @@
 // af-check as a user runs it: exit status, what goes to stdout and stderr, --format and --json.
 
+#include "tool_run.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -14,36 +16,12 @@
 
 namespace {
 
-struct ToolRun {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using af::test::readAll;
+using af::test::ToolRun;
 
 // Runs af-check from the source tree, so paths in its output are the ones written here.
 ToolRun afCheck(const std::string& args) {
-    static int counter = 0;
-    // ctest runs tests of this program in parallel processes: the name must be unique to each.
-    const std::string errPath =
-        testing::TempDir() + "af_check_err_" + std::to_string(getpid()) + "_" + std::to_string(counter++);
-    const std::string command = std::string("cd ") + AF_SOURCE_DIR + " && " + AF_CHECK_PATH + " " + args + " 2>" + errPath;
-    ToolRun run;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return run;
-    std::array<char, 4096> buffer;
-    for (std::size_t n; (n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0;) run.out.append(buffer.data(), n);
-    const int raw = pclose(pipe);
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    run.err = slurp(errPath);
-    std::remove(errPath.c_str());
-    return run;
+    return af::test::runTool(std::string("cd ") + AF_SOURCE_DIR + " && " + AF_CHECK_PATH + " " + args);
 }
 
 TEST(AfCheck, SampleFiguresLoadWithExitZero) {
@@ -58,7 +36,7 @@ TEST(AfCheck, AnErrorGivesExitOneAndPositionedDiagnostics) {
     EXPECT_EQ(r.status, 1);
     // The golden diagnostics, with the path af-check was given.
     std::string expected;
-    std::istringstream golden(slurp(std::string(AF_SOURCE_DIR) + "/tests/golden/bad_syntax.diag"));
+    std::istringstream golden(readAll(std::string(AF_SOURCE_DIR) + "/tests/golden/bad_syntax.diag"));
     for (std::string line; std::getline(golden, line);) expected += "tests/golden/" + line + "\n";
     EXPECT_EQ(r.err, expected);
     EXPECT_NE(r.out.find("tests/golden/bad_syntax.af: FAILED"), std::string::npos) << r.out;
@@ -96,7 +74,7 @@ TEST(AfCheck, BadUsageGivesExitTwo) {
 TEST(AfCheck, FormatPrintsTheCanonicalText) {
     const ToolRun r = afCheck("--format tests/golden/every_keyword.af");
     EXPECT_EQ(r.status, 0);
-    EXPECT_EQ(r.out, slurp(std::string(AF_SOURCE_DIR) + "/tests/golden/every_keyword.out"));
+    EXPECT_EQ(r.out, readAll(std::string(AF_SOURCE_DIR) + "/tests/golden/every_keyword.out"));
 }
 
 TEST(AfCheck, FormatOfAFileWithErrorsPrintsNothing) {
@@ -209,7 +187,7 @@ TEST(AfCheckFigure, FilesAndFigureTogetherIsBadUsage) {
 TEST(AfCheckFigure, BrokenCopyInAModFolderGivesWarnings) {
     const std::string mod = testing::TempDir() + "af_check_mod_" + std::to_string(getpid());
     std::filesystem::create_directories(mod + "/af");
-    std::string text = slurp(std::string(AF_SOURCE_DIR) + "/af/humanoid.af");
+    std::string text = readAll(std::string(AF_SOURCE_DIR) + "/af/humanoid.af");
     auto replaceOnce = [&](const std::string& from, const std::string& to) {
         const std::size_t at = text.find(from);
         ASSERT_NE(at, std::string::npos) << from;

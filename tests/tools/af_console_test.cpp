@@ -2,6 +2,8 @@
 // errors on stderr with the exit status a script can test, --strict, quit, and the session's
 // commands and cvars (src/console/session.h) reached through the program.
 
+#include "tool_run.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -20,45 +22,14 @@
 
 namespace {
 
-struct ConsoleRun {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
+using ConsoleRun = af::test::ToolRun;
+using af::test::readAll;
+using af::test::scratchDir;
+using af::test::writeAll;
 
-std::filesystem::path scratchDir() {
-    const testing::TestInfo* test = testing::UnitTest::GetInstance()->current_test_info();
-    // The process id keeps two build trees testing at once apart.
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "af_console_test" /
-                                      (std::string(test->name()) + "." + std::to_string(getpid()));
-    std::filesystem::create_directories(dir);
-    return dir;
-}
-
-std::string readAll(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-void writeAll(const std::filesystem::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-// Runs af-console with `input` as its stdin (a file, so never a terminal) and stdout and stderr
-// captured apart.
+// af-console with `input` as its stdin and stdout and stderr captured apart.
 ConsoleRun afConsole(const std::string& arguments, const std::string& input = "") {
-    const std::filesystem::path dir = scratchDir();
-    writeAll(dir / "stdin", input);
-    const std::string command = std::string(AF_CONSOLE_PATH) + " " + arguments + " < '" + (dir / "stdin").string() +
-                                "' > '" + (dir / "stdout").string() + "' 2> '" + (dir / "stderr").string() + "'";
-    const int status = std::system(command.c_str());
-    ConsoleRun run;
-    run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    run.out = readAll(dir / "stdout");
-    run.err = readAll(dir / "stderr");
-    return run;
+    return af::test::runTool(std::string(AF_CONSOLE_PATH) + " " + arguments, input);
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

@@ -3,6 +3,8 @@
 
 #include "af/text/md5.h"
 
+#include "tool_run.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -16,28 +18,12 @@
 
 namespace {
 
-struct SimRun {
-    int status = -1;
-    std::string out;
-};
+using SimRun = af::test::ToolRun;
 
-SimRun afSim(const std::string& arguments) {
-    SimRun run;
-    const std::string command = std::string(AF_SIM_PATH) + " " + arguments + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return run;
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) run.out += buffer.data();
-    const int status = pclose(pipe);
-    run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
+// af-sim with its stderr in `out` after its stdout.
+SimRun afSim(const std::string& arguments) { return af::test::runTool(std::string(AF_SIM_PATH) + " " + arguments + " 2>&1"); }
 
-std::filesystem::path scratch(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "af_sim_test";
-    std::filesystem::create_directories(dir);
-    return dir / name;
-}
+std::filesystem::path scratch(const std::string& name) { return af::test::scratchDir() / name; }
 
 TEST(AfSim, DefaultRunDropsTheHumanoidOntoTheDefaultMapAndItRestsWithinFiveSeconds) {
     const SimRun run = afSim("--json");

@@ -1,6 +1,8 @@
 // af-soak run as a user runs it: a short seeded soak passes with its table, a replayed drop gives
 // the numbers of its row in the full run, and bad usage is refused.
 
+#include "tool_run.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -11,23 +13,10 @@
 
 namespace {
 
-struct SoakRun {
-    int status = -1;
-    std::string out;
-};
+using SoakRun = af::test::ToolRun;
 
-SoakRun afSoak(const std::string& arguments) {
-    SoakRun run;
-    std::string command = AF_SOAK_PATH;
-    command.append(" ").append(arguments).append(" 2>&1");
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return run;
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) run.out += buffer.data();
-    const int status = pclose(pipe);
-    run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
+// af-soak with its stderr in `out` after its stdout.
+SoakRun afSoak(const std::string& arguments) { return af::test::runTool(std::string(AF_SOAK_PATH) + " " + arguments + " 2>&1"); }
 
 std::vector<std::string> linesStartingWith(const std::string& text, const std::string& prefix) {
     std::vector<std::string> found;

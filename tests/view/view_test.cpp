@@ -6,6 +6,7 @@
 
 #include "console/command_system.h"
 #include "console/session.h"
+#include "tool_run.h"
 
 #include <gtest/gtest.h>
 
@@ -31,20 +32,8 @@ using af::Vec3;
 
 constexpr int kWidth = 640, kHeight = 480;
 
-std::filesystem::path scratchDir() {
-    const testing::TestInfo* test = testing::UnitTest::GetInstance()->current_test_info();
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "af_view_test" /
-                                      (std::string(test->name()) + "." + std::to_string(getpid()));
-    std::filesystem::create_directories(dir);
-    return dir;
-}
-
-std::string readAll(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
+using af::test::readAll;
+using af::test::scratchDir;
 
 bool onPath(const std::string& program) {
     const char* path = std::getenv("PATH");

@@ -5,8 +5,6 @@
 
 #include "console/cvars.h"
 
-#include <charconv>
-#include <cmath>
 #include <cstdio>
 
 namespace af::view {
@@ -16,13 +14,6 @@ namespace {
 using console::CommandArgs;
 using console::Output;
 using Status = console::CommandStatus;
-
-std::optional<Real> number(const std::string& word) {
-    double v = 0;
-    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), v);
-    if (ec != std::errc() || end != word.data() + word.size() || !std::isfinite(v)) return std::nullopt;
-    return v;
-}
 
 std::string format(const Vec3& v) {
     char text[96];
@@ -48,7 +39,7 @@ void Viewer::registerViewCommands() {
                       }
                       std::vector<Real> v;
                       for (std::size_t i = 1; i < a.argc(); ++i) {
-                          const auto x = number(a.argv(i));
+                          const auto x = a.number(i);
                           if (!x) return Status::failure("view_camera: every argument must be a number");
                           v.push_back(*x);
                       }
@@ -70,7 +61,7 @@ void Viewer::registerViewCommands() {
                   },
                   {}});
     const auto pixel = [](const CommandArgs& a) -> std::optional<std::pair<Real, Real>> {
-        const auto x = number(a.argv(1)), y = number(a.argv(2));
+        const auto x = a.number(1), y = a.number(2);
         if (!x || !y) return std::nullopt;
         return std::pair{*x, *y};
     };

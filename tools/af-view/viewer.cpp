@@ -7,14 +7,13 @@
 
 #include "af/text/resource_index.h"
 #include "af/text/strings.h"
+#include "text/text_file.h"
 
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 namespace af::view {
 
@@ -28,14 +27,6 @@ constexpr Real kContactNormalLength = 4;  // units
 
 render::Colour brighter(const render::Colour& c) {
     return {std::min(1.0f, c[0] * 1.35f + 0.1f), std::min(1.0f, c[1] * 1.35f + 0.1f), std::min(1.0f, c[2] * 1.35f + 0.1f)};
-}
-
-std::optional<std::string> readText(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
 }
 
 // The AF entityDef that spawns the .af figure `figure`: the first whose articulatedFigure names it.
@@ -91,7 +82,7 @@ std::size_t Viewer::start() {
         }
     }
     if (!startup_.exec.empty()) {
-        if (const auto text = readText(startup_.exec)) run(*text, startup_.exec);
+        if (const auto text = readWholeFile(startup_.exec)) run(*text, startup_.exec);
         else {
             console_->output().error("af-view: error: cannot read the script '" + startup_.exec + "' given to --exec");
             ++errors;
