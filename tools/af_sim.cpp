@@ -6,7 +6,8 @@
 //
 // Exit status: 0 when the run finished (rested or not: the summary says which), 1 when a step
 // made a figure's motion invalid (a NaN, an infinity or an explosion: the world put the figure
-// back and the run went on; the summary says which and when), 2 for bad usage or bad input (an unknown option or
+// back and the run went on; the summary says which and when) or a figure stood stuck (still with
+// a joint open or a contact deep: World::kStuckJointError), 2 for bad usage or bad input (an unknown option or
 // value, an unknown entity, a file that does not load or cannot be written).
 
 #include "sim_bake.h"
@@ -65,7 +66,7 @@ int simulate(Options& o) {
                                          {"trajectory", o.trajectory}, {"md5anim", o.md5anim}})
             if (!path.empty()) std::cout << "  " << what << ": " << path << '\n';
     }
-    return result.restored.empty() ? 0 : 1;
+    return result.restored.empty() && result.stuck.empty() ? 0 : 1;
 }
 
 }  // namespace

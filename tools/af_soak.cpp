@@ -2,9 +2,9 @@
 // table of the worst cases, each with the seed that replays it.
 //
 // Exit status: 0 when no drop failed; 1 when a drop saw a NaN or an infinity, exploded (kinetic
-// energy beyond kExplosionRatio times what the start and gravity could supply), or the library
-// threw or refused a figure the soak made valid; 2 for bad usage or bad input (an unknown option,
-// a map that does not load).
+// energy beyond kExplosionRatio times what the start and gravity could supply), rested with a
+// joint open or a contact deep, or the library threw or refused a figure the soak made valid; 2
+// for bad usage or bad input (an unknown option, a map that does not load).
 
 #include "soak_drop.h"
 
@@ -114,6 +114,7 @@ void printTable(const std::vector<DropResult>& results) {
         {"NaN/inf", [](const DropResult& r) { return r.nonFinite; }},
         {"explosion", [](const DropResult& r) { return r.exploded(); }},
         {"put back", [](const DropResult& r) { return r.restored > 0; }},
+        {"rested open", [](const DropResult& r) { return r.restedOpen(); }},
         {"threw", [](const DropResult& r) { return !r.threw.empty(); }},
         {"refused", [](const DropResult& r) { return !r.rejected.empty(); }},
     };
@@ -135,12 +136,14 @@ void printTable(const std::vector<DropResult>& results) {
 }
 
 void printTotals(const std::vector<DropResult>& results, Real seconds, double wall) {
-    int nan = 0, explosions = 0, putBack = 0, threw = 0, refused = 0, rested = 0, failedDrops = 0, bodies = 0, slow = 0;
+    int nan = 0, explosions = 0, putBack = 0, restedOpen = 0, stuck = 0, threw = 0, refused = 0, rested = 0, failedDrops = 0, bodies = 0, slow = 0;
     long failedSolves = 0, steps = 0;
     for (const DropResult& r : results) {
         nan += r.nonFinite;
         explosions += r.exploded();
         putBack += r.restored > 0;
+        restedOpen += r.restedOpen();
+        stuck += r.stuck > 0;
         threw += !r.threw.empty();
         refused += !r.rejected.empty();
         rested += r.restTime.has_value();
@@ -151,9 +154,9 @@ void printTotals(const std::vector<DropResult>& results, Real seconds, double wa
         slow += r.tooSlow;
     }
     std::printf("totals: %zu drops, %d bodies, %ld steps, %d NaN/inf, %d explosions, %d put back by the guard, %d threw, %d refused, "
-                "%d rested (%zu still moving at %s s), %d too slow, %ld failed solves in %d drops, wall %.1f s\n",
+                "%d rested (%d with joints open or contacts deep, %zu still moving at %s s), %d with a figure found stuck, %d too slow, %ld failed solves in %d drops, wall %.1f s\n",
                 results.size(), bodies, steps, nan, explosions, putBack, threw, refused, rested,
-                results.size() - static_cast<std::size_t>(rested + slow), number(seconds).c_str(), slow, failedSolves,
+                restedOpen, results.size() - static_cast<std::size_t>(rested + slow), number(seconds).c_str(), stuck, slow, failedSolves,
                 failedDrops, wall);
 }
 

@@ -62,6 +62,10 @@ std::string summaryText(const Scene& scene, const RunResult& r) {
     for (const RunResult::Restore& e : r.restored)
         out += "  invalid motion      " + figureName(scene, e.figure.figure) + " at " + fixed(e.time, 3) + " s: " +
                reasonText(e.figure) + "; put back where it was before the step, at rest\n";
+    for (const RunResult::Stuck& e : r.stuck)
+        out += "  stuck               " + figureName(scene, e.figure.figure) + " at " + fixed(e.time, 3) +
+               " s: still, with a joint open " + general(e.figure.jointError) + " units and a contact " +
+               general(e.figure.penetration) + " units deep; not at rest\n";
     return out;
 }
 
@@ -84,6 +88,13 @@ nlohmann::ordered_json summaryJson(const Scene& scene, const RunResult& r) {
                             {"time_s", e.time},
                             {"reason", e.figure.reason == InvalidMotion::NonFinite ? "non-finite" : "energy gain"}});
     j["invalid_motion"] = restored;
+    nlohmann::ordered_json stuck = nlohmann::ordered_json::array();
+    for (const RunResult::Stuck& e : r.stuck)
+        stuck.push_back({{"figure", figureName(scene, e.figure.figure)},
+                         {"time_s", e.time},
+                         {"joint_error", e.figure.jointError},
+                         {"penetration", e.figure.penetration}});
+    j["stuck"] = stuck;
     nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < scene.world.bodies().size(); ++i) {
         const RigidBody& b = scene.world.bodies()[i];

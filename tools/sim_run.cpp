@@ -28,6 +28,7 @@ RunResult run(Scene& scene, const RunOptions& options, const std::function<void(
         world.step();
         ++result.steps;
         for (const RestoredFigure& r : world.lastStep().restored) result.restored.push_back({world.time(), r});
+        for (const StuckFigure& s : world.lastStep().stuck) result.stuck.push_back({world.time(), s});
         const Real jointError = world.maxJointError();
         const Real kinetic = world.kineticEnergy();
         result.maxJointError = std::max(result.maxJointError, jointError);

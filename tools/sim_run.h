@@ -41,6 +41,13 @@ struct RunResult {
         RestoredFigure figure;
     };
     std::vector<Restore> restored;
+    // Figures that stood still with a joint open or a contact deep (StepReport::stuck), each
+    // when it stopped so.
+    struct Stuck {
+        Real time = 0;
+        StuckFigure figure;
+    };
+    std::vector<Stuck> stuck;
     std::vector<Sample> history;      // one per step
     std::vector<Real> frameTimes;     // the poses kept for pictures
     std::vector<std::vector<RigidPose>> frames;

@@ -18,11 +18,6 @@ constexpr int kMaxPile = 16;
 // x = 128). A figure "inside a brush" is placed with its origin in there.
 constexpr Real kStepX0 = 70, kStepX1 = 186, kStepY = 58, kStepZ0 = 2, kStepZ1 = 60;
 
-std::string format(const char* pattern, double a, double b = 0, double c = 0, double d = 0) {
-    char buffer[256];
-    std::snprintf(buffer, sizeof buffer, pattern, a, b, c, d);
-    return buffer;
-}
 
 bool finite(const World& world) {
     for (const RigidBody& b : world.bodies())
@@ -137,6 +132,7 @@ void measure(World& world, const SoakInputs& inputs, DropResult& result) {
         world.step();
         ++result.steps;
         result.restored += static_cast<int>(world.lastStep().restored.size());
+        result.stuck += static_cast<int>(world.lastStep().stuck.size());
         const Clock::time_point stepEnd = Clock::now();
         result.slowestStep = std::max(result.slowestStep, std::chrono::duration<Real>(stepEnd - stepStart).count());
         if (!finite(world)) {

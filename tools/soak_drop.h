@@ -6,6 +6,7 @@
 
 #include "soak_figures.h"
 
+#include "af/dynamics/world.h"
 #include "af/geometry/polytope.h"
 
 #include <cstdint>
@@ -46,6 +47,9 @@ struct DropResult {
     // Figures the world's guard put back (StepReport::restored): a NaN or an explosion inside a
     // step, caught there and undone; the drop goes on, but it counts as one.
     int restored = 0;
+    // Figures the world found stuck (StepReport::stuck): still, with a joint open or a contact
+    // deep, and so kept awake rather than rested. Not a failure: the world says so.
+    int stuck = 0;
     bool nonFinite = false;        // a NaN or an infinity in a body's pose or velocity
     Real nonFiniteTime = 0;        // s, when first seen (the drop stops there)
     // max over steps of KE / (supply + slack), where supply = start KE + the springs' start energy
@@ -67,7 +71,12 @@ struct DropResult {
     bool tooSlow = false;          // stopped by SoakInputs::wallBudget
 
     bool exploded() const { return energyRatio > kExplosionRatio; }
-    bool failed() const { return nonFinite || restored > 0 || exploded() || !threw.empty(); }
+    // Every figure rested, yet with a joint open or a contact deep (beyond World::kStuckJointError
+    // or kStuckPenetration): the world should have called such a figure stuck, not resting.
+    bool restedOpen() const {
+        return restTime && (endJointError > kStuckJointError || endPenetration > kStuckPenetration);
+    }
+    bool failed() const { return nonFinite || restored > 0 || exploded() || restedOpen() || !threw.empty(); }
 };
 
 DropResult runDrop(const SoakInputs& inputs, std::uint64_t seed);

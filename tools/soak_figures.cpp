@@ -20,12 +20,6 @@ std::string num(Real value) {
 
 std::string vec(const Vec3& v) { return "( " + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + " )"; }
 
-std::string format(const char* pattern, double value) {
-    char buffer[128];
-    std::snprintf(buffer, sizeof buffer, pattern, value);
-    return buffer;
-}
-
 // The largest mass ratio across a constraint between two bodies of the figure.
 Real largestMassRatio(const Figure& figure) {
     Real ratio = 1;

@@ -9,11 +9,19 @@
 #include "af/figure/figure.h"
 #include "af/text/resource_index.h"
 
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace af::soak {
+
+// printf into a string, for the soak's notes and table: `pattern` takes up to four doubles.
+inline std::string format(const char* pattern, double a, double b = 0, double c = 0, double d = 0) {
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, pattern, a, b, c, d);
+    return buffer;
+}
 
 // A figure of the mod folders, resolved once and shared by every drop (read-only).
 struct SampleFigure {

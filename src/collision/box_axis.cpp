@@ -12,9 +12,6 @@ namespace af::collision_detail {
 
 namespace {
 
-// Below this sine two edge directions count as parallel, as in the polytope search.
-constexpr Real kParallelSine = 1e-6;
-
 int edgeIndex(const BoxFeatures& box, int axis, Real alongNext, Real alongAfter) {
     return box.edge[axis][(alongNext > 0 ? 1 : 0) | (alongAfter > 0 ? 2 : 0)];
 }

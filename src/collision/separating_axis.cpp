@@ -8,10 +8,6 @@ namespace af::collision_detail {
 
 namespace {
 
-// Below this sine two edge directions count as parallel: they span no axis (their cross product
-// would be rounding noise), and the faces' own normals cover what they could separate.
-constexpr Real kParallelSine = 1e-6;
-
 bool isArcless(const ShapeFeatures& f, int edge) {
     return std::find(f.arclessEdges.begin(), f.arclessEdges.end(), edge) != f.arclessEdges.end();
 }

@@ -8,9 +8,6 @@ namespace af::collision_detail {
 
 namespace {
 
-// Below this sine two unit normals count as parallel (or opposite): no arc between them.
-constexpr Real kParallelSine = 1e-6;
-
 // Parallel within this sine: one group. Tight, because the group's direction stands in for every
 // member's when finding axes.
 constexpr Real kGroupSine = 1e-9;

@@ -15,6 +15,11 @@ namespace af::collision_detail {
 // A's body frame), far below anything visible.
 inline constexpr Real kLengthTolerance = 1e-7;
 
+// Below this sine two unit directions (face normals, edge directions) count as parallel or
+// opposite: no arc between them, no axis spanned by them (their cross product would be rounding
+// noise; the faces' own normals cover what such an axis could separate).
+inline constexpr Real kParallelSine = 1e-6;
+
 struct EdgeFeature {
     int v0 = 0, v1 = 0;                // polytope.edges order: v0 < v1
     std::array<int, 2> faces{-1, -1};  // walking v0→v1, walking v1→v0; −1 when without area

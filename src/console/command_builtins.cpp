@@ -4,6 +4,7 @@
 // silent default), and the lists filter by prefix rather than by wildcard.
 
 #include "console/command_system.h"
+#include "console/console_text.h"
 
 #include "af/text/strings.h"
 
@@ -41,9 +42,6 @@ std::size_t widestOf(const std::vector<std::string>& names) {
     return width;
 }
 
-std::string padded(const std::string& text, std::size_t width) {
-    return text + std::string(width > text.size() ? width - text.size() : 0, ' ');
-}
 
 std::string flagNote(const CVar& cvar) {
     std::string note;

@@ -4,6 +4,7 @@
 // The built-in commands are in command_builtins.cpp.
 
 #include "console/command_system.h"
+#include "console/console_text.h"
 
 #include "af/text/strings.h"
 
@@ -17,7 +18,6 @@ namespace af::console {
 
 namespace {
 
-std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
 
 // Edit distance ignoring case, for "did you mean"; gives up (returns limit + 1) as soon as the
 // lengths alone differ by more than `limit`, so long junk words cost nothing.

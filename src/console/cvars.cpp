@@ -2,6 +2,7 @@
 // script, the console, toggle and the owner's updates are refused for the same reasons.
 
 #include "console/cvars.h"
+#include "console/console_text.h"
 
 #include "af/text/strings.h"
 
@@ -20,7 +21,6 @@ std::string formatReal(double v) {
     return std::string(buffer, result.ptr);
 }
 
-std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
 
 // from_chars takes no leading `+`; a typed `+5` is still five.
 std::string_view withoutPlus(std::string_view text) {

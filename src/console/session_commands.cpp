@@ -1,6 +1,7 @@
 // The session's commands and cvars (session.h), each a thin reader of its arguments over
 // Session::State. Names and meanings follow Doom's console (docs/doom-physics.md §5.1, §5.2).
 
+#include "console/console_text.h"
 #include "console/session_state.h"
 
 #include "af/text/strings.h"
@@ -20,11 +21,6 @@ std::optional<Vec3> vector(const CommandArgs& args, std::size_t first) {
     return Vec3(*x, *y, *z);
 }
 
-std::string fixed(Real v, int decimals = 2) {
-    char buffer[48];
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
-    return buffer;
-}
 
 Status failure(const std::optional<std::string>& error) { return error ? Status::failure(*error) : Status::success(); }
 

@@ -2,6 +2,7 @@
 // spawn order, each heading named by the cvar and the entity, so a script's log says what it is.
 
 #include "console/session_show.h"
+#include "console/console_text.h"
 
 #include "console/session_state.h"
 #include "console/show_geometry.h"
@@ -40,22 +41,9 @@ constexpr ShowCVar kShowCVars[] = {
     {"af_showTimings", &ShowFlags::timings, "print the steps' wall-clock cost after step, run and waitRest"},
 };
 
-std::string fixed(Real v, int decimals = 2) {
-    if (std::abs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0;  // no "-0.00"
-    char buffer[48];
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
-    return buffer;
-}
-
-std::string general(Real v) {
-    char buffer[48];
-    std::snprintf(buffer, sizeof buffer, "%.3g", v);
-    return buffer;
-}
 
 std::string vec(const Vec3& v) { return "(" + fixed(v.x()) + " " + fixed(v.y()) + " " + fixed(v.z()) + ")"; }
 
-std::string padded(const std::string& text, std::size_t width) { return text + std::string(width > text.size() ? width - text.size() : 0, ' '); }
 
 // One entity as the blocks see it.
 struct Shown {

@@ -29,7 +29,6 @@
 namespace af::joint_detail {
 namespace {
 
-constexpr Real kPi = std::numbers::pi_v<Real>;
 
 struct CrossState {
     Vec3 a, b;    // the arms

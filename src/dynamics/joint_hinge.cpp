@@ -29,7 +29,6 @@
 namespace af::joint_detail {
 namespace {
 
-constexpr Real kPi = std::numbers::pi_v<Real>;
 
 // x = rA·tB and y = rA·rB: φ = atan2(x, y).
 struct AngleState {

@@ -113,6 +113,7 @@ Real roughAtan2(Real y, Real x);
 // Whether a limit row written when |angle| > bound (bound = limit − margin) is surely not
 // written, from the rough angle: 1e-4 rad leaves room for its error and every rounding.
 inline bool surelyInside(Real roughAngle, Real bound) { return std::fabs(roughAngle) < bound - Real(1e-4); }
+inline constexpr Real kPi = std::numbers::pi_v<Real>;
 inline Real degrees(Real radians) { return radians * (180 / std::numbers::pi_v<Real>); }
 inline Real radians(Real degrees) { return degrees * (std::numbers::pi_v<Real> / 180); }
 

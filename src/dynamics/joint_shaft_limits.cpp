@@ -29,7 +29,6 @@
 namespace af::joint_detail {
 namespace {
 
-constexpr Real kPi = std::numbers::pi_v<Real>;
 
 // θ = atan2(|b × k|, b·k), made (as the row's normal) only when a row may be written.
 struct ConeState {

@@ -21,7 +21,6 @@
 namespace af::joint_detail {
 namespace {
 
-constexpr Real kPi = std::numbers::pi_v<Real>;
 
 // The rotation taking unit `from` to unit `to` by the shortest arc, applied to v.
 Vec3 alongShortestArc(const Vec3& from, const Vec3& to, const Vec3& v) {

@@ -29,7 +29,6 @@ using Slot = lcp::Slot;
 // singular (friction so strong that the normals are not determined by the pattern).
 constexpr Real kLinkPivotRelative = 1e-13;
 
-bool atBound(Slot s) { return s == Slot::AtLower || s == Slot::AtUpper; }
 
 // Solves the k×k system K ξ = rhs in place (K row-major, stride k) by Gaussian elimination with
 // partial pivoting. Returns false when a pivot is negligible.

@@ -37,7 +37,6 @@ namespace {
 
 using Slot = lcp::Slot;
 
-bool atBound(Slot s) { return s == Slot::AtLower || s == Slot::AtUpper; }
 
 // A clamped row whose Δx per unit step is below this is taken not to move (rounding noise).
 // If it does creep over its bound, the check after the pass releases it.

@@ -108,6 +108,8 @@ enum class Slot : std::uint8_t {
     Unprocessed,  ///< not driven yet; x is some value inside the box
 };
 
+inline bool atBound(Slot s) { return s == Slot::AtLower || s == Slot::AtUpper; }
+
 }  // namespace af::lcp
 
 namespace af {

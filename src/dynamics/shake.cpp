@@ -7,13 +7,13 @@ namespace af {
 
 namespace {
 
-enum class Side { None, A, B };
+enum class RowSide { None, A, B };
 
 // Which side of a joint's rows (joining bodyA and bodyB) is on `body`: none for the world or a
 // body the joint does not join.
-Side sideOf(int bodyA, int bodyB, int body) {
-    if (body == kWorldBody) return Side::None;
-    return bodyA == body ? Side::A : bodyB == body ? Side::B : Side::None;
+RowSide sideOf(int bodyA, int bodyB, int body) {
+    if (body == kWorldBody) return RowSide::None;
+    return bodyA == body ? RowSide::A : bodyB == body ? RowSide::B : RowSide::None;
 }
 
 // A row's J₁ on one of its bodies.
@@ -24,9 +24,9 @@ struct RowPart {
     }
 };
 
-RowPart partOf(const ConstraintRow& row, Side side) {
-    if (side == Side::A) return {row.linearA, row.angularA};
-    if (side == Side::B) return {row.linearB, row.angularB};
+RowPart partOf(const ConstraintRow& row, RowSide side) {
+    if (side == RowSide::A) return {row.linearA, row.angularA};
+    if (side == RowSide::B) return {row.linearB, row.angularB};
     return {};
 }
 
@@ -97,18 +97,18 @@ void ShakeCorrection::capture(const ConstraintRows& rows, const std::vector<Join
 void ShakeCorrection::fillBlock(const Block& block, const ConstraintRows& rows, std::vector<Real>& k) const {
     const std::size_t n = static_cast<std::size_t>(block.size);
     auto fill = [&](const Group& p, const Group& q) {
-        const Side onA = sideOf(p.bodyA, p.bodyB, q.bodyA), onB = sideOf(p.bodyA, p.bodyB, q.bodyB);
+        const RowSide onA = sideOf(p.bodyA, p.bodyB, q.bodyA), onB = sideOf(p.bodyA, p.bodyB, q.bodyB);
         for (int r = 0; r < p.size; ++r) {
             const ConstraintRow& now = rows[nowRow_[static_cast<std::size_t>(p.first + r)]];
             const RowPart a = partOf(now, onA), b = partOf(now, onB);
             Real* out = &k[static_cast<std::size_t>(p.at.start + r) * n + static_cast<std::size_t>(q.at.start)];
             const RowResponse* m = &responses_[static_cast<std::size_t>(q.first)];
-            if (onA != Side::None && onB != Side::None)
+            if (onA != RowSide::None && onB != RowSide::None)
                 for (int c = 0; c < q.size; ++c)
                     out[c] = a.along(m[c].linearA, m[c].angularA) + b.along(m[c].linearB, m[c].angularB);
-            else if (onA != Side::None)
+            else if (onA != RowSide::None)
                 for (int c = 0; c < q.size; ++c) out[c] = a.along(m[c].linearA, m[c].angularA);
-            else if (onB != Side::None)
+            else if (onB != RowSide::None)
                 for (int c = 0; c < q.size; ++c) out[c] = b.along(m[c].linearB, m[c].angularB);
             else
                 std::fill(out, out + q.size, Real(0));

@@ -87,6 +87,7 @@ FigureId World::State::addFigure(const Figure& figure, std::shared_ptr<const Fig
     slotOfId.push_back(slot);
     rest.emplace_back(restSettingsFrom(figure.settings));
     figureResting.push_back(0);
+    figureStuck.push_back(0);
     refreshAwake();
     return id;
 }

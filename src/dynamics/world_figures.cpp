@@ -74,6 +74,7 @@ void World::State::removeSlot(int slot) {
     ids.erase(ids.begin() + at);
     rest.erase(rest.begin() + at);
     figureResting.erase(figureResting.begin() + at);
+    figureStuck.erase(figureStuck.begin() + at);
     renumber();
 }
 

@@ -19,6 +19,29 @@ bool overSuspendThresholds(const BodyMotion& m, const RestSettings& s) {
 
 }  // namespace
 
+StuckFigure World::State::stuckness(int figure) const {
+    StuckFigure out{ids[static_cast<std::size_t>(figure)]};
+    for (std::size_t j = 0; j < joints.size(); ++j)  // its own joints and its binds
+        if (jointFigure[j] == figure) out.jointError = std::max(out.jointError, jointError(joints[j], bodies));
+    for (const ContactPoint& p : contacts.points()) {
+        const bool ours = bodyFigure[static_cast<std::size_t>(p.bodyA)] == figure ||
+                          (p.bodyB != kStaticWorld && bodyFigure[static_cast<std::size_t>(p.bodyB)] == figure);
+        if (ours) out.penetration = std::max(out.penetration, currentDepth(p, bodies));
+    }
+    return out;
+}
+
+// A figure ready to rest but held with a joint open or a contact deep is stuck: resting would
+// freeze the error in place. It stays awake (a drag or a neighbour may free it), reported once.
+bool World::State::stuck(int figure) {
+    const StuckFigure s = stuckness(figure);
+    const bool isStuck = s.jointError > kStuckJointError || s.penetration > kStuckPenetration;
+    std::uint8_t& reported = figureStuck[static_cast<std::size_t>(figure)];
+    if (isStuck && !reported) report.stuck.push_back(s);
+    reported = isStuck;
+    return isStuck;
+}
+
 void World::State::refreshAwake() {
     bodyAwake.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i)
@@ -81,7 +104,7 @@ void World::State::testRest(Real dt) {
         }
         RestMonitor& monitor = rest[f];
         if (monitor.atRest() && moving) monitor.wake();
-        ready[f] = monitor.update(dt, motion);
+        ready[f] = monitor.update(dt, motion) && !stuck(static_cast<int>(f));
         // A held figure hangs still yet is not resting: the drag sets its velocities every step.
         if (drag && slotOfId[static_cast<std::size_t>(drag->body.figure.value)] == static_cast<int>(f)) ready[f] = 0;
     }

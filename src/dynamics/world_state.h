@@ -107,6 +107,7 @@ struct World::State {
     // Rest: one monitor per figure, and who is awake.
     std::vector<RestMonitor> rest;
     std::vector<std::uint8_t> figureResting;  // per figure
+    std::vector<std::uint8_t> figureStuck;    // per figure: reported stuck and not freed since
     std::vector<int> bodyFigure;              // per body: its figure, or -1 (always awake)
     std::vector<std::uint8_t> bodyAwake;      // per body
     std::vector<Vec3> startLinear, startAngular;
@@ -137,6 +138,8 @@ struct World::State {
     // bodies, joints or contact points by index forgotten (the next step searches and solves
     // from scratch).
     void renumber();
+    StuckFigure stuckness(int figure) const;  // its widest joint gap and deepest contact
+    bool stuck(int figure);  // stuck (World::kStuckJointError), and reported in the step's report once
     // Wakes every figure touching a body of `slot` in the last step's contacts.
     void wakeTouching(int slot);
     void wakeDragged();  // a dragged figure never rests

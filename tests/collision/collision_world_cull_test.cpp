@@ -20,8 +20,8 @@ namespace {
 using test::randomRotation;
 using test::randomVector;
 
-constexpr ContentsMask kCorpse = contents::Corpse;
-constexpr ContentsMask kHits = contents::Solid | contents::Corpse;
+using test::kCorpse;
+using test::kHits;
 
 bool sameContact(const BodyContact& x, const BodyContact& y) {
     if (x.bodyA != y.bodyA || x.bodyB != y.bodyB || x.staticShape != y.staticShape ||

@@ -1,14 +1,15 @@
 #include "af/collision/collision_world.h"
 
 #include "af/geometry/shapes.h"
+#include "narrowphase_test_util.h"
 
 #include <gtest/gtest.h>
 
 namespace af {
 namespace {
 
-constexpr ContentsMask kCorpse = contents::Corpse;
-constexpr ContentsMask kHits = contents::Solid | contents::Corpse;
+using test::kCorpse;
+using test::kHits;
 
 CollisionFilter ragdollBody(int figure, bool selfCollision = true) {
     return {figure, selfCollision, kCorpse, kHits, true};

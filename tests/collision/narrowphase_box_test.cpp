@@ -13,7 +13,7 @@ using test::pose;
 using test::rotation;
 using test::wellFormed;
 
-constexpr Real kTol = 1e-9;
+using test::kTol;
 
 TEST(PlaneContact, BoxLyingFlatGetsFourCornersWithExactDepths) {
     const Polytope b = box(Vec3(10, 6, 5));

@@ -15,7 +15,7 @@ using test::rotation;
 using test::randomRotation;
 using test::wellFormed;
 
-constexpr Real kTol = 1e-9;
+using test::kTol;
 
 RigidPose poseOf(const BodyShape& s) { return {s.origin, s.rotation}; }
 

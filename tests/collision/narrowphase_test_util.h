@@ -2,6 +2,7 @@
 // Shapes, poses, invariants every manifold must satisfy, and a brute-force separating-axis
 // reference for the narrowphase tests.
 
+#include "af/collision/collision_world.h"
 #include "af/collision/narrowphase.h"
 #include "af/geometry/shapes.h"
 
@@ -16,6 +17,13 @@
 #include <set>
 
 namespace af::test {
+
+// Contacts agree with the reference to this, units.
+inline constexpr Real kTol = 1e-9;
+
+// A ragdoll body's contents, and what it collides with (docs/formats.md, contents).
+inline constexpr ContentsMask kCorpse = contents::Corpse;
+inline constexpr ContentsMask kHits = contents::Solid | contents::Corpse;
 
 inline Polytope box(const Vec3& half) { return makeBox(-half, half); }
 

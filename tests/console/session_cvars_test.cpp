@@ -9,7 +9,7 @@
 namespace af::console {
 namespace {
 
-struct Console {
+struct CvarsConsole {
     std::string errors;
     CommandSystem commands{Output([](std::string_view) {}, [this](std::string_view l) { errors += std::string(l) + "\n"; })};
     Session session{{AF_SOURCE_DIR}, commands};
@@ -18,7 +18,7 @@ struct Console {
 };
 
 TEST(SessionCvars, WithoutGravityASpawnedRagdollStaysWhereItWasPut) {
-    Console c;
+    CvarsConsole c;
     ASSERT_TRUE(c.run("set g_gravity 0; spawn ragdoll_humanoid origin \"0 0 40\"")) << c.errors;
     const FigureId id = c.session.world().figureIds().at(0);
     const std::vector<RigidPose> before = c.session.world().bodyPoses(id);
@@ -30,7 +30,7 @@ TEST(SessionCvars, WithoutGravityASpawnedRagdollStaysWhereItWasPut) {
 }
 
 TEST(SessionCvars, EachCvarSetsItsWorldSettingAndHoldsAcrossAMapLoad) {
-    Console c;
+    CvarsConsole c;
     ASSERT_TRUE(c.run("set af_timeScale 0.5; set af_skipLimits 1; set af_skipFriction 1; set af_skipSelfCollision 1; "
                       "set af_forceFriction 2; set af_maxLinearVelocity 64; set af_maxAngularVelocity 1; "
                       "set af_useLinearTime 0; set g_gravity 500"))
@@ -59,7 +59,7 @@ TEST(SessionCvars, EachCvarSetsItsWorldSettingAndHoldsAcrossAMapLoad) {
 }
 
 TEST(SessionCvars, OutOfRangeValuesAreRefusedAndChangeNothing) {
-    Console c;
+    CvarsConsole c;
     const WorldSettings before = c.settings();
     for (const char* bad : {"set g_gravity nan", "set af_timeScale 0", "set af_timeScale inf", "set af_maxLinearVelocity -1",
                             "set af_forceFriction 1e9", "set af_skipLimits maybe"}) {

@@ -13,7 +13,7 @@
 namespace af::console {
 namespace {
 
-struct Console {
+struct ShowConsole {
     std::string info, errors;
     CommandSystem commands{Output([this](std::string_view l) { info += std::string(l) + "\n"; },
                                   [this](std::string_view l) { errors += std::string(l) + "\n"; })};
@@ -63,13 +63,13 @@ std::map<std::string, double> namedNumbers(const std::vector<std::string>& block
 }
 
 TEST(SessionShow, NothingIsPrintedWhileEveryShowCvarIsOff) {
-    Console c;
+    ShowConsole c;
     c.run("spawn ragdoll_humanoid");
     EXPECT_EQ(c.run("step 3"), "");
 }
 
 TEST(SessionShow, MassesAreTheFiguresAndTheTotalIsTheirSum) {
-    Console c;
+    ShowConsole c;
     c.run("spawn ragdoll_humanoid");
     const std::string out = c.run("af_showMass 1; af_showTotalMass 1; step 0");
     const std::map<std::string, double> masses = namedNumbers(block(out, "af_showMass ragdoll_humanoid_1:"));
@@ -88,7 +88,7 @@ TEST(SessionShow, MassesAreTheFiguresAndTheTotalIsTheirSum) {
 }
 
 TEST(SessionShow, BodiesVelocitiesAndNamesDescribeTheWorldAfterTheStep) {
-    Console c;
+    ShowConsole c;
     c.run("spawn ragdoll_humanoid origin \"0 0 100\"");
     const std::string out = c.run("af_showBodies 1; af_showVelocity 1; af_showBodyNames 1; step 2");
     const World& w = c.session.world();
@@ -115,7 +115,7 @@ TEST(SessionShow, BodiesVelocitiesAndNamesDescribeTheWorldAfterTheStep) {
 }
 
 TEST(SessionShow, ConstraintsAndTheirLimitsAreListedWithTheDeclsIntervals) {
-    Console c;
+    ShowConsole c;
     c.run("spawn ragdoll_humanoid\nwaitRest 5");
     const std::string out = c.run("af_showConstraints 1; af_showConstraintNames 1; af_showLimits 1; step 0");
     const Figure& f = c.figure();
@@ -150,7 +150,7 @@ TEST(SessionShow, ConstraintsAndTheirLimitsAreListedWithTheDeclsIntervals) {
 }
 
 TEST(SessionShow, TreesIndentEachChildUnderItsParent) {
-    Console c;
+    ShowConsole c;
     c.run("spawn ragdoll_humanoid");
     const std::vector<std::string> tree = block(c.run("af_showTrees 1; step 0"), "af_showTrees ragdoll_humanoid_1:");
     const Figure& f = c.figure();
@@ -172,7 +172,7 @@ TEST(SessionShow, TreesIndentEachChildUnderItsParent) {
 }
 
 TEST(SessionShow, ActiveLimitsTheBlocksToRagdollsNotAtRest) {
-    Console c;
+    ShowConsole c;
     c.run("spawn ragdoll_humanoid\nwaitRest 5\nspawn ragdoll_humanoid origin \"200 0 60\"");
     const std::string out = c.run("af_showTotalMass 1; af_showActive 1; step 1");
     EXPECT_EQ(out.find("ragdoll_humanoid_1"), std::string::npos) << out;
@@ -180,7 +180,7 @@ TEST(SessionShow, ActiveLimitsTheBlocksToRagdollsNotAtRest) {
 }
 
 TEST(SessionShow, HighlightsNameTheirBodyAndConstraintOrSayThereIsNone) {
-    Console c;
+    ShowConsole c;
     c.run("spawn ragdoll_humanoid");
     std::string out = c.run("af_highlightBody rhand; af_highlightConstraint relbow; step 0");
     EXPECT_TRUE(std::regex_search(out, std::regex("af_highlightBody ragdoll_humanoid_1 rhand: [a-z]+ at \\(.*\\), mass [0-9.]+, v \\(")))
@@ -193,7 +193,7 @@ TEST(SessionShow, HighlightsNameTheirBodyAndConstraintOrSayThereIsNone) {
 }
 
 TEST(SessionShow, TimingsSummariseTheStepsOfEachClockCommand) {
-    Console c;
+    ShowConsole c;
     c.run("spawn ragdoll_humanoid");
     const std::regex summary("af_showTimings: ([0-9]+) steps?, [0-9]+\\.[0-9]{2} ms \\([0-9]+\\.[0-9]{2} ms a step, longest [0-9]+\\.[0-9]{2}\\)\n");
     std::smatch m;
@@ -209,7 +209,7 @@ TEST(SessionShow, TimingsSummariseTheStepsOfEachClockCommand) {
 }
 
 TEST(SessionShow, ShowCvarsAreBoolsAndRefuseOtherValues) {
-    Console c;
+    ShowConsole c;
     const ExecuteResult r = c.commands.execute("af_showMass maybe", "test.cfg");
     EXPECT_EQ(r.errors, 1u);
     EXPECT_EQ(std::count(c.errors.begin(), c.errors.end(), '\n'), 1) << c.errors;

@@ -17,13 +17,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Console {
+struct SessionConsole {
     std::string info, errors;
     CommandSystem commands{Output([this](std::string_view l) { info += std::string(l) + "\n"; },
                                   [this](std::string_view l) { errors += std::string(l) + "\n"; })};
     Session session;
 
-    explicit Console(std::vector<fs::path> roots = {AF_SOURCE_DIR}) : session(std::move(roots), commands) {}
+    explicit SessionConsole(std::vector<fs::path> roots = {AF_SOURCE_DIR}) : session(std::move(roots), commands) {}
     ExecuteResult run(std::string_view text) { return commands.execute(text, "test.cfg"); }
 };
 
@@ -56,7 +56,7 @@ std::map<std::string, std::map<std::string, RigidPose>> savedPoses(const fs::pat
 TEST(Session, APileSavedAndLoadedAgainSavesTheSamePoses) {
     const fs::path first = scratch("pile.map"), second = scratch("pile_again.map");
     {
-        Console c;
+        SessionConsole c;
         ASSERT_TRUE(c.run("map " AF_SOURCE_DIR "/maps/default.map").ok()) << c.errors;
         ASSERT_TRUE(c.run("spawn ragdoll_humanoid origin \"0 0 40\" angles \"80 0 0\"\n"
                           "spawn ragdoll_humanoid origin \"5 0 60\" angles \"80 90 0\"\n"
@@ -67,7 +67,7 @@ TEST(Session, APileSavedAndLoadedAgainSavesTheSamePoses) {
         ASSERT_TRUE(c.run("saveRagdolls " + first.string()).ok()) << c.errors;
         EXPECT_NE(c.info.find("saved 2 ragdolls"), std::string::npos) << c.info;
     }
-    Console fresh;
+    SessionConsole fresh;
     ASSERT_TRUE(fresh.run("map " + first.string()).ok()) << fresh.errors;
     EXPECT_NE(fresh.info.find("2 ragdolls"), std::string::npos) << fresh.info;
     ASSERT_TRUE(fresh.run("saveRagdolls " + second.string()).ok()) << fresh.errors;
@@ -91,7 +91,7 @@ TEST(Session, APileSavedAndLoadedAgainSavesTheSamePoses) {
 // docs/doom-physics.md §5.2: a hand dragged to 40 units above the floor and held there for 2 s
 // ends within 2 units of the target with the figure hanging from it.
 TEST(Session, ADraggedHandIsHeldAtTheTargetWithTheFigureHangingBelow) {
-    Console c;
+    SessionConsole c;
     ASSERT_TRUE(c.run("spawn ragdoll_humanoid origin \"0 0 1\" angles \"90 0 0\"\nwaitRest 5").ok()) << c.errors;
     ASSERT_TRUE(c.run("drag ragdoll_humanoid_1 rhand 0 0 40\nrun 2").ok()) << c.errors;
     const World& world = c.session.world();
@@ -109,7 +109,7 @@ TEST(Session, ADraggedHandIsHeldAtTheTargetWithTheFigureHangingBelow) {
 }
 
 TEST(Session, DeleteSelectedAndKillRagdollsRemoveEntities) {
-    Console c;
+    SessionConsole c;
     ASSERT_TRUE(c.run("spawn ragdoll_humanoid\nspawn ragdoll_humanoid origin \"200 0 40\" name corpse").ok()) << c.errors;
     EXPECT_EQ(c.session.world().figureIds().size(), 2u);
     ASSERT_TRUE(c.run("deleteSelected").ok()) << c.errors;
@@ -122,7 +122,7 @@ TEST(Session, DeleteSelectedAndKillRagdollsRemoveEntities) {
 }
 
 TEST(Session, BadCommandsSayWhatIsWrongAndChangeNothing) {
-    Console c;
+    SessionConsole c;
     ASSERT_TRUE(c.run("spawn ragdoll_humanoid").ok());
     const Vec3 before = c.session.world().bodies().front().position;
     for (const char* bad : {"spawn no_such_def", "spawn ragdoll_humanoid origin \"1 nan 3\"", "spawn ragdoll_humanoid origin",
@@ -150,7 +150,7 @@ fs::path modCopy() {
 
 TEST(Session, ReloadDeclsRespawnsAFigureWhoseAfChanged) {
     const fs::path root = modCopy();
-    Console c({root});
+    SessionConsole c({root});
     ASSERT_TRUE(c.run("spawn ragdoll_humanoid").ok()) << c.errors;
     EXPECT_NEAR(c.session.world().definition(c.session.world().figureIds().front()).totalMass(), 150, 1e-9);
     ASSERT_TRUE(c.run("reloadDecls").ok());
@@ -172,7 +172,7 @@ TEST(Session, ReloadDeclsRespawnsAFigureWhoseAfChanged) {
 // that was there byte for byte.
 TEST(Session, ASaveCutShortLeavesTheOldMapWhole) {
     const fs::path path = scratch("cut.map");
-    Console c;
+    SessionConsole c;
     ASSERT_TRUE(c.run("spawn ragdoll_humanoid\nwaitRest 5\nsaveRagdolls " + path.string()).ok()) << c.errors;
     const std::string before = readFile(path);
     ASSERT_TRUE(c.run("drag ragdoll_humanoid_1 head 0 0 60\nrun 0.5\ndrag off").ok()) << c.errors;

@@ -6,11 +6,11 @@
 #include "world_test_util.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace af {
 namespace {
 
-constexpr Real kPi = 3.14159265358979323846;
 constexpr Real kHalf = 5;
 
 Figure box() {
@@ -43,7 +43,7 @@ RowSource groundContacts(Real friction, Real restitution = 0) {
 // Tilting gravity by `slope` degrees about Y is the same as tilting the ground.
 Real slideAfter(Real slopeDegrees, Real friction, Real seconds) {
     WorldSettings settings;
-    const Real a = slopeDegrees * kPi / 180;
+    const Real a = slopeDegrees * std::numbers::pi / 180;
     settings.gravity = 1066 * Vec3(std::sin(a), 0, -std::cos(a));
     World world(box(), test::dynamicsOnly(settings));
     detail::WorldAccess::setContactSource(world, groundContacts(friction));
@@ -62,7 +62,7 @@ TEST(Contact, BoxHoldsOnASlopeBelowTheFrictionAngle) {
 
 TEST(Contact, BoxSlidesAboveTheFrictionAngleAsCoulombSays) {
     const Real mu = 0.5, slope = 35, seconds = 1;
-    const Real a = slope * kPi / 180;
+    const Real a = slope * std::numbers::pi / 180;
     const Real acceleration = 1066 * (std::sin(a) - mu * std::cos(a));
     const Real expected = 0.5 * acceleration * seconds * seconds;
     EXPECT_NEAR(slideAfter(slope, mu, seconds) / expected, 1.0, 0.03);

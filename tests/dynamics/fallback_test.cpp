@@ -11,7 +11,7 @@ namespace {
 
 using namespace test;
 
-constexpr Real kTol = 1e-8;
+constexpr Real kFallbackTol = 1e-8;
 
 TEST(FrozenBoxFallback, DampedBoxesSolveMostCoupledProblemsThePassesAloneCannot) {
     // Eight contacts on a dense Gram matrix couple normals and friction far more strongly than
@@ -28,8 +28,8 @@ TEST(FrozenBoxFallback, DampedBoxesSolveMostCoupledProblemsThePassesAloneCannot)
         const ExactRun plain = solveExact(passesOnly, p);
         const ExactRun run = solveExact(boxed, p);
         if (run.result.status == LcpStatus::Solved) {
-            ASSERT_TRUE(isSolution(p, run.x, kTol)) << "problem " << k;
-            ASSERT_LE(lcpResidual(p.view(), run.x), kTol) << "problem " << k;
+            ASSERT_TRUE(isSolution(p, run.x, kFallbackTol)) << "problem " << k;
+            ASSERT_LE(lcpResidual(p.view(), run.x), kFallbackTol) << "problem " << k;
         } else {
             EXPECT_EQ(run.result.status, LcpStatus::NotConverged) << "problem " << k;
             EXPECT_FALSE(run.result.failedRows.empty()) << "problem " << k;
@@ -61,8 +61,8 @@ TEST(FrozenBoxFallback, DampedBoxesSettleFromAStaleGuessOnContactProblems) {
         ASSERT_NE(run.result.status, LcpStatus::InvalidInput) << "problem " << k;
         if (run.result.status != LcpStatus::Solved) continue;
         ++solved;
-        ASSERT_TRUE(isSolution(after, run.x, kTol)) << "problem " << k;
-        ASSERT_LE(run.result.residual, kTol) << "problem " << k;
+        ASSERT_TRUE(isSolution(after, run.x, kFallbackTol)) << "problem " << k;
+        ASSERT_LE(run.result.residual, kFallbackTol) << "problem " << k;
     }
     EXPECT_GE(solved, 995);
 }

@@ -24,7 +24,6 @@ namespace {
 
 constexpr Real kDt = Real(1) / 64;
 constexpr int kWindowCloseStep = 66;
-constexpr Real kPi = std::numbers::pi_v<Real>;
 const Vec3 kDoomGravity(0, 0, -1066);
 
 using AngleAxis = Eigen::AngleAxis<Real>;
@@ -157,7 +156,7 @@ TEST(RestMonitor, WindowKeepsAwakeAFigureThatMovedNoMoveTranslation) {
 
 // A body turning steadily about an oblique axis, `totalDegrees` over the window.
 std::vector<BodyMotion> turning(int step, Real totalDegrees) {
-    const Real perStep = totalDegrees / (kWindowCloseStep - 1) * kPi / 180;
+    const Real perStep = totalDegrees / (kWindowCloseStep - 1) * std::numbers::pi / 180;
     BodyMotion b = busy(stillAt());
     b.pose.rotation = (AngleAxis(perStep * step, Vec3(1, -2, 2).normalized()) * AngleAxis(0.3, Vec3::UnitX()))
                           .toRotationMatrix();
@@ -178,7 +177,7 @@ TEST(RestMonitor, WindowKeepsAwakeAFigureThatTurnedNoMoveRotation) {
 std::vector<BodyMotion> contactJitter(int n) {
     const Real sign = n % 2 == 0 ? 1 : -1;
     BodyMotion b = stillAt(Vec3(3, 2, 1) + sign * Vec3(0.4, -0.3, 0.5));
-    b.pose.rotation = AngleAxis(sign * 0.9 * kPi / 180, Vec3::UnitY()).toRotationMatrix();
+    b.pose.rotation = AngleAxis(sign * 0.9 * std::numbers::pi / 180, Vec3::UnitY()).toRotationMatrix();
     if (n % 2 == 0)
         b.linearVelocity = oblique(45);
     else
@@ -223,7 +222,7 @@ TEST(RestMonitor, TopOfBallisticArcStaysAwake) {
 TEST(RestMonitor, WindowCountsTheLargestMoveNotOnlyTheEndpoints) {
     const Real period = (kWindowCloseStep - 1) * kDt;
     const auto swing = [&](int n) {
-        const Real phase = 2 * kPi * (n - 1) * kDt / period;
+        const Real phase = 2 * std::numbers::pi * (n - 1) * kDt / period;
         BodyMotion b = busy(stillAt(Vec3(15 * (1 - std::cos(phase)), 0, 0)));
         return std::vector<BodyMotion>{stillAt(), b};
     };

@@ -248,7 +248,7 @@ Real expectSameAsDense(const Scene& scene, bool position, const SparseRun& spars
     return worst / scale;
 }
 
-void report(const char* what, const Scene& scene, Real velocity, Real position) {
+void reportSparseAgreement(const char* what, const Scene& scene, Real velocity, Real position) {
     std::printf("sparse vs dense, %s (%zu rows): max |Δv_sparse − Δv_dense| / max |Δv|: velocity %.2g, position %.2g\n",
                 what, scene.rows.size(), velocity, position);
 }
@@ -288,7 +288,7 @@ TEST(SparseLcp, ShakenHumanoidWithLimitsAndJointFrictionMatchesTheDenseSolve) {
             last = std::move(run);
         }
     }
-    report("shaken humanoid, 60 steps", scene, velocity, position);
+    reportSparseAgreement("shaken humanoid, 60 steps", scene, velocity, position);
     std::printf("sparse, shaken humanoid: %d dense cores in %d rounds, %d of %d solves gave up\n", cores, coreRounds,
                 gaveUp, 2 * steps);
     EXPECT_GE(withLimits, 8) << "poses with at least 4 limit rows";
@@ -343,7 +343,7 @@ void expectSameAsDenseFromItsPattern(const char* what, const Scene& scene) {
                     isPosition ? "position" : "velocity", warm.result.trials, cold.result.trials, toString(cold.result.status));
         if (cold.result.status == LcpStatus::Solved) expectSameAsDense(scene, isPosition, cold, std::string(what) + ", cold");
     }
-    report(what, scene, velocity, position);
+    reportSparseAgreement(what, scene, velocity, position);
 }
 
 TEST(SparseLcp, ContactsWithFrictionLoopsAndChainsMatchTheDenseSolve) {

@@ -104,7 +104,7 @@ TEST(TreeSolverStructure, EveryJointOfTheHungHumanoidIsPrimaryItsWeldToTheWorldT
     for (std::size_t k = 0; k < scene.joints.size(); ++k) EXPECT_TRUE(solver.isPrimary(static_cast<int>(k))) << scene.joints[k].name;
 }
 
-void report(const char* what, const Scene& scene, Real velocity, Real position) {
+void reportTreeAgreement(const char* what, const Scene& scene, Real velocity, Real position) {
     std::printf("tree vs dense, %s (%zu rows): max |λ_tree − λ_dense| / max |λ|: velocity %.2g, position %.2g\n", what,
                 scene.rows.size(), velocity, position);
 }
@@ -125,7 +125,7 @@ TEST(TreeSolverExact, HungHumanoidWithLimitsAndJointFrictionMatchesTheDenseSolve
         position = std::max(position, expectSameAsDense(scene, solver, Problem::Position, "position, step " + std::to_string(i)));
         position = std::max(position, expectSameAsDense(scene, solver, Problem::PositionOnly, "position only, step " + std::to_string(i)));
     }
-    report("shaken humanoid, 60 steps", scene, velocity, position);
+    reportTreeAgreement("shaken humanoid, 60 steps", scene, velocity, position);
     EXPECT_GE(withLimits, 8) << "poses with at least 4 limit rows";
 }
 
@@ -139,7 +139,7 @@ TEST(TreeSolverExact, TwentyLinkChainMatchesTheDenseSolve) {
     const Real velocity = expectSameAsDense(scene, solver, Problem::Velocity, "velocity");
     const Real position = std::max(expectSameAsDense(scene, solver, Problem::Position, "position"),
                                    expectSameAsDense(scene, solver, Problem::PositionOnly, "position only"));
-    report("20-link chain", scene, velocity, position);
+    reportTreeAgreement("20-link chain", scene, velocity, position);
 }
 
 TEST(TreeSolverExact, FreeChainOnTheGroundMatchesTheDenseSolve) {
@@ -148,7 +148,7 @@ TEST(TreeSolverExact, FreeChainOnTheGroundMatchesTheDenseSolve) {
     const Real velocity = expectSameAsDense(scene, solver, Problem::Velocity, "velocity");
     const Real position = std::max(expectSameAsDense(scene, solver, Problem::Position, "position"),
                                    expectSameAsDense(scene, solver, Problem::PositionOnly, "position only"));
-    report("free 20-link chain on the ground", scene, velocity, position);
+    reportTreeAgreement("free 20-link chain on the ground", scene, velocity, position);
 }
 
 TEST(TreeSolverExact, LoopsAndASecondPathToTheWorldMatchTheDenseSolve) {
@@ -161,7 +161,7 @@ TEST(TreeSolverExact, LoopsAndASecondPathToTheWorldMatchTheDenseSolve) {
     const Real velocity = expectSameAsDense(scene, solver, Problem::Velocity, "velocity");
     const Real position = std::max(expectSameAsDense(scene, solver, Problem::Position, "position"),
                                    expectSameAsDense(scene, solver, Problem::PositionOnly, "position only"));
-    report("loops", scene, velocity, position);
+    reportTreeAgreement("loops", scene, velocity, position);
 }
 
 TEST(TreeSolverExact, ContactsWithFrictionMatchTheDenseSolve) {
@@ -170,7 +170,7 @@ TEST(TreeSolverExact, ContactsWithFrictionMatchTheDenseSolve) {
     const Real velocity = expectSameAsDense(scene, solver, Problem::Velocity, "velocity");
     const Real position = std::max(expectSameAsDense(scene, solver, Problem::Position, "position"),
                                    expectSameAsDense(scene, solver, Problem::PositionOnly, "position only"));
-    report("humanoid with contacts", scene, velocity, position);
+    reportTreeAgreement("humanoid with contacts", scene, velocity, position);
 }
 
 TEST(TreeSolverExact, ImpulsesAndDisplacementsMoveBodiesAsTheDensePathDoes) {

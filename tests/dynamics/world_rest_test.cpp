@@ -132,5 +132,35 @@ TEST(WorldRest, PileOfHumanoidsSleepsAsOneIslandAndWakesWhenOneIsPushed) {
     EXPECT_GE(awake, 2) << "the pushed figure must wake the figures it presses on";
 }
 
+// A box sunk 6 units into the floor with its centre bound where it is: the bind and the floor
+// cannot both be met, so it stands still with the bind open or the contact deep. Resting would
+// freeze that; the world calls it stuck instead, once, and keeps it awake, and once unbound it
+// rises clear and rests as usual.
+TEST(WorldRest, AFigureHeldWithAJointOpenIsStuckNotResting) {
+    World world(freeBox(Vec3(4, 4, 4), Vec3(0, 0, -2)));
+    world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
+    world.bind(BodyRef{FigureId{0}, 0}, Vec3(0, 0, -2));
+    std::vector<StuckFigure> stuck;
+    while (world.time() < 3) {
+        world.step();
+        stuck.insert(stuck.end(), world.lastStep().stuck.begin(), world.lastStep().stuck.end());
+        ASSERT_FALSE(world.atRest()) << "rested at " << world.time() << " s with the bind open "
+                                     << world.maxJointError() << " or the box " << world.maxPenetration() << " deep";
+    }
+    ASSERT_EQ(stuck.size(), 1u) << "reported once";
+    EXPECT_EQ(stuck[0].figure, FigureId{0});
+    EXPECT_TRUE(stuck[0].jointError > kStuckJointError || stuck[0].penetration > kStuckPenetration);
+    // Between them the bind and the contact still hold the 6 units the box was sunk by.
+    EXPECT_NEAR(stuck[0].jointError + stuck[0].penetration, 6, 0.5);
+
+    world.unbind(FigureId{0});
+    world.wakeFigure(FigureId{0});
+    const Real freed = world.time();
+    const Real rest = stepUntilRest(world, freed + 3);
+    ASSERT_GT(rest, 0) << "the freed box never rested";
+    EXPECT_LT(world.maxPenetration(), kStuckPenetration);
+    EXPECT_TRUE(world.lastStep().stuck.empty());
+}
+
 }  // namespace
 }  // namespace af

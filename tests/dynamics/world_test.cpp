@@ -4,6 +4,7 @@
 #include "world_test_util.h"
 
 #include <cmath>
+#include <numbers>
 #include <cstring>
 #include <random>
 
@@ -13,11 +14,10 @@ namespace {
 using test::horizontalChain;
 using test::pendulum;
 
-constexpr Real kPi = 3.14159265358979323846;
 
 // Swings the pendulum's body rigidly about the pivot by `degrees` about +X.
 void tilt(World& world, const Vec3& pivot, Real degrees) {
-    const Quat turn(Eigen::AngleAxis<Real>(degrees * kPi / 180, Vec3::UnitX()));
+    const Quat turn(Eigen::AngleAxis<Real>(degrees * std::numbers::pi / 180, Vec3::UnitX()));
     RigidBody& bob = detail::WorldAccess::bodies(world)[0];  // before the first step
     bob.position = pivot + turn * (bob.position - pivot);
     bob.orientation = turn * bob.orientation;
@@ -45,7 +45,7 @@ TEST(WorldPendulum, PeriodMatchesSmallAngleTheory) {
     const Real m = bob.mass();
     const Real inertiaAboutPivot = bob.inertia(0, 0) + m * length * length;
     const Real g = -world.settings().gravity.z();
-    const Real expected = 2 * kPi * std::sqrt(inertiaAboutPivot / (m * g * length));
+    const Real expected = 2 * std::numbers::pi * std::sqrt(inertiaAboutPivot / (m * g * length));
 
     const std::vector<Real> crossings = upwardCrossings(world, static_cast<int>(12 * expected * 60));
     ASSERT_GE(crossings.size(), 10u);
@@ -62,7 +62,7 @@ TEST(WorldPendulum, EnergyDriftsLessThanOnePercentOverAHundredPeriods) {
     tilt(world, Vec3(0, 0, length), 30);
     const Real swing = test::potentialEnergy(world) + world.kineticEnergy() - bottom;  // of the oscillation
     const RigidBody& bob = world.bodies()[0];
-    const Real period = 2 * kPi * std::sqrt((bob.inertia(0, 0) + bob.mass() * length * length) /
+    const Real period = 2 * std::numbers::pi * std::sqrt((bob.inertia(0, 0) + bob.mass() * length * length) /
                                             (bob.mass() * -world.settings().gravity.z() * length));
     const int perPeriod = static_cast<int>(std::lround(period * 60));
     auto meanOverOnePeriod = [&] {

@@ -10,7 +10,7 @@
 namespace af {
 namespace {
 
-DefFile parseGood(const std::string& text) {
+DefFile parseDefGood(const std::string& text) {
     const DefParseResult r = parseDef(text, "test.def");
     EXPECT_TRUE(r.ok()) << r.diagnostics.formatAll();
     EXPECT_EQ(r.diagnostics.warningCount(), 0u) << r.diagnostics.formatAll();
@@ -20,7 +20,7 @@ DefFile parseGood(const std::string& text) {
 std::string diagnosticsOf(const std::string& text) { return parseDef(text, "bad.def").diagnostics.formatAll(); }
 
 TEST(DefParser, KeepsEntityDefKeyValuesInOrder) {
-    const DefFile f = parseGood(
+    const DefFile f = parseDefGood(
         "entityDef Ragdoll_Humanoid.v2 {\n"
         "\t\"spawnclass\"\t\"idAFEntity_Generic\"\n"
         "\t\"model\"\t\t\"humanoid\"\n"
@@ -58,7 +58,7 @@ TEST(DefParser, RepeatedKeyWarnsAndTheLaterValueWins) {
 }
 
 TEST(DefParser, NameBeforeBraceIsAnEntityDefAndTypeKeywordsIgnoreCase) {
-    const DefFile f = parseGood(
+    const DefFile f = parseDefGood(
         "plain_name { \"a\" \"1\" }\n"
         "ENTITYDEF shouted { \"b\" \"2\" }\n"
         "Model mixed { mesh m.md5mesh }\n");
@@ -70,7 +70,7 @@ TEST(DefParser, NameBeforeBraceIsAnEntityDefAndTypeKeywordsIgnoreCase) {
 }
 
 TEST(DefParser, KeepsModelDeclItems) {
-    const DefFile f = parseGood(
+    const DefFile f = parseDefGood(
         "model monster_zombie {\n"                                                   // 1
         "\tinherit zombie_base\n"                                                    // 2
         "\tmesh models/md5/zombie.md5mesh\n"                                         // 3
@@ -113,7 +113,7 @@ TEST(DefParser, KeepsModelDeclItems) {
 }
 
 TEST(DefParser, SkipsOtherDeclKindsWithoutErrors) {
-    const DefFile f = parseGood(
+    const DefFile f = parseDefGood(
         "export fred {\n"
         "\toptions -prefix FRED_ -keep Body -parent Body2 Body\n"
         "\tmesh models/fred.mb -dest models/md5/fred.md5mesh\n"

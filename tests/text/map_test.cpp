@@ -12,7 +12,7 @@
 namespace af {
 namespace {
 
-MapFile parseGood(const std::string& text) {
+MapFile parseMapGood(const std::string& text) {
     const MapParseResult r = parseMapFile(text, "test.map");
     EXPECT_TRUE(r.ok()) << r.diagnostics.formatAll();
     EXPECT_EQ(r.diagnostics.warningCount(), 0u) << r.diagnostics.formatAll();
@@ -33,7 +33,7 @@ std::string side(const std::string& plane, const std::string& material = "\"text
 }
 
 TEST(MapParser, ReadsEntitiesKeysAndBrushSides) {
-    const MapFile m = parseGood("Version 2\n"
+    const MapFile m = parseMapGood("Version 2\n"
                                 "{\n"
                                 "\"classname\" \"worldspawn\"\n"
                                 "{\n"
@@ -77,7 +77,7 @@ TEST(MapParser, ReadsEntitiesKeysAndBrushSides) {
 }
 
 TEST(MapParser, ReadsPatchDef2AndPatchDef3ControlPointRows) {
-    const MapFile m = parseGood("Version 2\n{\n\"classname\" \"worldspawn\"\n"
+    const MapFile m = parseMapGood("Version 2\n{\n\"classname\" \"worldspawn\"\n"
                                 "{\n patchDef2\n {\n  \"textures/af/curve\"\n  ( 2 3 0 0 0 )\n  (\n"
                                 "   ( ( 0 0 0 0 0 ) ( 0 10 0 0 0.5 ) ( 0 20 0 0 1 ) )\n"
                                 "   ( ( 10 0 5 1 0 ) ( 10 10 5 1 0.5 ) ( 10 20 -5 1 1 ) )\n"
@@ -107,7 +107,7 @@ TEST(MapParser, ReadsPatchDef2AndPatchDef3ControlPointRows) {
 }
 
 TEST(MapParser, KeysAreCaseInsensitiveAndARepeatedKeyOverwritesInPlace) {
-    const MapFile m = parseGood("{\n\"classname\" \"worldspawn\"\n\"Gravity\" \"800\"\n\"name\" \"w\"\n"
+    const MapFile m = parseMapGood("{\n\"classname\" \"worldspawn\"\n\"Gravity\" \"800\"\n\"name\" \"w\"\n"
                                 "\"gravity\" \"1066\"\n\"message  \" \"trailing blanks go  \t\"\n}\n");
     const MapEntity& e = m.entities.at(0);
     ASSERT_EQ(e.keys.size(), 4u);
@@ -136,7 +136,7 @@ TEST(MapEntity, SetOverwritesInPlaceAndAppendsNewKeys) {
 }
 
 TEST(MapParser, NoVersionLineMeansVersionOneWithImplicitTexturesPrefix) {
-    const MapFile m = parseGood("{\n\"classname\" \"worldspawn\"\n{\nbrushDef3\n{\n" + side("0 0 1 0", "floor") + "}\n}\n}\n");
+    const MapFile m = parseMapGood("{\n\"classname\" \"worldspawn\"\n{\nbrushDef3\n{\n" + side("0 0 1 0", "floor") + "}\n}\n}\n");
     EXPECT_EQ(m.version, 1);
     const BrushSide& s = m.entities.at(0).primitives.at(0).brush()->sides.at(0);
     EXPECT_EQ(s.material, "floor");  // kept as spelled
@@ -151,7 +151,7 @@ TEST(MapParser, OtherPrimitivesAreKeptAsTheirText) {
     const std::string oldBrush = "brush\n {\n  ( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) /* comment */ af/x 0 0 0 0.5 0.5\n }";
     const std::string q3Brush = "( 0 0 64 ) ( 64 0 64 ) ( 0 64 64 ) af/q3 0 0 0 0.5 0.5 0 0 0";
     const std::string patch1 = "patchDef1 { \"not one we read\" }";
-    const MapFile m = parseGood("Version 2\n{\n\"classname\" \"worldspawn\"\n{\n" + oldBrush + "\n}\n{  " + q3Brush +
+    const MapFile m = parseMapGood("Version 2\n{\n\"classname\" \"worldspawn\"\n{\n" + oldBrush + "\n}\n{  " + q3Brush +
                                 "\n\n}\n{" + patch1 + "}\n}\n");
     const MapEntity& e = m.entities.at(0);
     ASSERT_EQ(e.primitives.size(), 3u);
@@ -162,7 +162,7 @@ TEST(MapParser, OtherPrimitivesAreKeptAsTheirText) {
     const std::string written = writeMapFile(m);
     EXPECT_NE(written.find("// primitive 0\n{\n" + oldBrush + "\n}\n"), std::string::npos) << written;
     EXPECT_NE(written.find("// primitive 1\n{\n" + q3Brush + "\n}\n"), std::string::npos) << written;
-    EXPECT_EQ(parseGood(written), m);
+    EXPECT_EQ(parseMapGood(written), m);
 }
 
 TEST(MapWriter, WritesDoomsEditorLayout) {
@@ -199,9 +199,9 @@ TEST(MapWriter, ReadWriteReadGivesTheSameMapAndWritingIsStable) {
     const std::string text = "Version 2\n{\n\"classname\" \"worldspawn\"\n{\nbrushDef3\n{\n" +
                              side("0.1 -0.7 0.3 1e-12") + side("0 0 -1 123456.789", "m 5 6 7") +
                              "}\n}\n}\n{\n\"classname\" \"x\"\n}\n";
-    const MapFile first = parseGood(text);
+    const MapFile first = parseMapGood(text);
     const std::string written = writeMapFile(first);
-    const MapFile second = parseGood(written);
+    const MapFile second = parseMapGood(written);
     EXPECT_EQ(second, first);
     EXPECT_EQ(writeMapFile(second), written);
     EXPECT_NE(written.find("( 0.1000000015 -0.6999999881 0.3000000119 1e-12 )"), std::string::npos) << written;
@@ -209,8 +209,8 @@ TEST(MapWriter, ReadWriteReadGivesTheSameMapAndWritingIsStable) {
 }
 
 TEST(MapWriter, EqualityIgnoresWhereThingsWereRead) {
-    const MapFile a = parseGood("{\n\"classname\" \"worldspawn\"\n}\n");
-    const MapFile b = parseGood("\n\n   {  \"classname\"    \"worldspawn\" }");
+    const MapFile a = parseMapGood("{\n\"classname\" \"worldspawn\"\n}\n");
+    const MapFile b = parseMapGood("\n\n   {  \"classname\"    \"worldspawn\" }");
     EXPECT_NE(a.entities[0].where, b.entities[0].where);
     EXPECT_EQ(a, b);
 }

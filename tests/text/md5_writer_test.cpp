@@ -20,7 +20,7 @@ namespace {
 const std::string kAfPose = std::string(AF_SOURCE_DIR) + "/models/humanoid/af_pose.md5anim";
 const std::string kHumanoidMesh = std::string(AF_SOURCE_DIR) + "/models/humanoid/humanoid.md5mesh";
 
-Md5Anim parseGood(const std::string& text) {
+Md5Anim parseWrittenAnim(const std::string& text) {
     const Md5AnimParseResult r = parseMd5Anim(text, "written.md5anim");
     EXPECT_TRUE(r.ok()) << r.diagnostics.formatAll() << "\n" << text;
     return r.anim;
@@ -58,7 +58,7 @@ Md5Quat canonical(const Md5Quat& q) {
 
 TEST(Md5Writer, WrittenAnimReadsBackWithTheSameHeaderHierarchyAndValues) {
     const Md5Anim built = Source().build();
-    const Md5Anim back = parseGood(writeMd5Anim(built));
+    const Md5Anim back = parseWrittenAnim(writeMd5Anim(built));
     EXPECT_EQ(back.commandLine, "exported by a test");
     EXPECT_EQ(back.frameCount, 3);
     EXPECT_EQ(back.frameRate, 30);
@@ -88,7 +88,7 @@ TEST(Md5Writer, WrittenAnimReadsBackWithTheSameHeaderHierarchyAndValues) {
 
 TEST(Md5Writer, EvaluatingTheWrittenFileGivesTheInputTransforms) {
     const Source source;
-    const Md5Anim back = parseGood(writeMd5Anim(source.build()));
+    const Md5Anim back = parseWrittenAnim(writeMd5Anim(source.build()));
     for (int f = 0; f < 3; ++f) {
         const std::vector<Md5JointPose> poses = evaluateMd5AnimFrame(back, f);
         for (std::size_t j = 0; j < 3; ++j) {
@@ -114,7 +114,7 @@ TEST(Md5Writer, HumanoidAfPoseRoundTrips) {
     ASSERT_TRUE(read.ok()) << read.diagnostics.formatAll();
     const Md5Anim& a = read.anim;
     const std::string written = writeMd5Anim(a);
-    const Md5Anim b = parseGood(written);
+    const Md5Anim b = parseWrittenAnim(written);
 
     EXPECT_EQ(b.commandLine, a.commandLine);
     EXPECT_EQ(b.frameCount, a.frameCount);
@@ -188,7 +188,7 @@ TEST(Md5Writer, LayoutIsThatOfIdsExporter) {
 TEST(Md5Writer, BaseframeQuaternionWithNegativeWIsWrittenNegated) {
     Md5Anim a = makeMd5Anim({"origin"}, {-1}, {{{{0, 0, 0}, {0, 0, 0, 1}}}}, {{}}, 24);
     a.baseFrame[0].orientation = {0.5, -0.5, 0.5, -0.5};
-    const Md5Anim back = parseGood(writeMd5Anim(a));
+    const Md5Anim back = parseWrittenAnim(writeMd5Anim(a));
     EXPECT_EQ(back.baseFrame[0].orientation, (Md5Quat{-0.5, 0.5, -0.5, 0.5}));
 }
 
@@ -198,7 +198,7 @@ TEST(Md5Writer, SmallValuesKeepTheirFloatValue) {
     a.components[1] = Real(-3.1415926e-5f);
     const std::string text = writeMd5Anim(a);
     EXPECT_NE(text.find("\t1.234567e-07 "), std::string::npos) << "ten decimals would lose this one";
-    const Md5Anim back = parseGood(text);
+    const Md5Anim back = parseWrittenAnim(text);
     EXPECT_EQ(back.components[0], a.components[0]);
     EXPECT_EQ(back.components[1], a.components[1]);
 }

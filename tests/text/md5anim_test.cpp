@@ -55,13 +55,13 @@ std::string animWith(const std::string& from, const std::string& to) {
     return text;
 }
 
-Md5Anim parseGood(const std::string& text) {
+Md5Anim parseAnimGood(const std::string& text) {
     const Md5AnimParseResult r = parseMd5Anim(text, "test.md5anim");
     EXPECT_TRUE(r.ok()) << r.diagnostics.formatAll();
     return r.anim;
 }
 
-std::string onlyError(const std::string& text) {
+std::string onlyAnimError(const std::string& text) {
     const Md5AnimParseResult r = parseMd5Anim(text, "bad.md5anim");
     EXPECT_FALSE(r.ok());
     EXPECT_EQ(r.diagnostics.all().size(), 1u) << r.diagnostics.formatAll();
@@ -76,7 +76,7 @@ void expectQuat(const Md5Quat& q, Real x, Real y, Real z, Real w) {
 }
 
 TEST(Md5Anim, KeepsHeaderHierarchyBoundsBaseframeAndComponentsAsWritten) {
-    const Md5Anim a = parseGood(kAnim);
+    const Md5Anim a = parseAnimGood(kAnim);
     EXPECT_EQ(a.frameCount, 2);
     EXPECT_EQ(a.frameRate, 24);
     EXPECT_EQ(a.animatedComponentCount, 5);
@@ -98,7 +98,7 @@ TEST(Md5Anim, KeepsHeaderHierarchyBoundsBaseframeAndComponentsAsWritten) {
 }
 
 TEST(Md5Anim, RootTranslationIsRelativeToBaseframe) {
-    const Md5Anim a = parseGood(kAnim);
+    const Md5Anim a = parseAnimGood(kAnim);
     // Frame 1: Tx 12.5 - 10, Ty 16 - 20; Tz is not animated, so 0 although the baseframe says 30.
     const std::vector<Md5JointPose> f1 = evaluateMd5AnimFrame(a, 1);
     EXPECT_EQ(f1[0].translation, (Real3{2.5, -4, 0}));
@@ -108,12 +108,12 @@ TEST(Md5Anim, RootTranslationIsRelativeToBaseframe) {
 }
 
 TEST(Md5Anim, RootTranslationIsZeroWhenRootIsNotAnimated) {
-    const Md5Anim a = parseGood(animWith("\"origin\"\t-1 3 0", "\"origin\"\t-1 0 0"));
+    const Md5Anim a = parseAnimGood(animWith("\"origin\"\t-1 3 0", "\"origin\"\t-1 0 0"));
     EXPECT_EQ(evaluateMd5AnimFrame(a, 1)[0].translation, (Real3{0, 0, 0}));
 }
 
 TEST(Md5Anim, AnimatedComponentsOverrideBaseframe) {
-    const Md5Anim a = parseGood(kAnim);
+    const Md5Anim a = parseAnimGood(kAnim);
     const std::vector<Md5JointPose> f1 = evaluateMd5AnimFrame(a, 1);
     ASSERT_EQ(f1.size(), 3u);
     // Hips: translation from the baseframe; Qx, Qz from the frame, Qy from the baseframe, so
@@ -126,7 +126,7 @@ TEST(Md5Anim, AnimatedComponentsOverrideBaseframe) {
 }
 
 TEST(Md5Anim, RecomputesWOnlyForAnimatedQuaternions) {
-    const Md5Anim a = parseGood(kAnim);
+    const Md5Anim a = parseAnimGood(kAnim);
     const std::vector<Md5JointPose> f0 = evaluateMd5AnimFrame(a, 0);
     // Hips frame 0 writes Qx = 0, Qz = 0 over (0.5, 0.5, 0.5): w is recomputed from (0, 0.5, 0).
     expectQuat(f0[1].orientation, 0, 0.5, 0, std::sqrt(0.75));
@@ -135,12 +135,12 @@ TEST(Md5Anim, RecomputesWOnlyForAnimatedQuaternions) {
 }
 
 TEST(Md5Anim, FrameZeroUsesItsOwnComponentsNotJustTheBaseframe) {
-    const Md5Anim a = parseGood(animWith("\t10 20 0 0 10\n", "\t10 20 0 0 99\n"));
+    const Md5Anim a = parseAnimGood(animWith("\t10 20 0 0 10\n", "\t10 20 0 0 99\n"));
     EXPECT_EQ(evaluateMd5AnimFrame(a, 0)[2].translation, (Real3{0, 0, 99}));
 }
 
 TEST(Md5Anim, EvaluatingAFrameOutsideTheAnimThrows) {
-    const Md5Anim a = parseGood(kAnim);
+    const Md5Anim a = parseAnimGood(kAnim);
     EXPECT_THROW(evaluateMd5AnimFrame(a, 2), std::out_of_range);
     EXPECT_THROW(evaluateMd5AnimFrame(a, -1), std::out_of_range);
     EXPECT_THROW(evaluateMd5AnimFrame(Md5Anim{}, 0), std::out_of_range);
@@ -148,71 +148,71 @@ TEST(Md5Anim, EvaluatingAFrameOutsideTheAnimThrows) {
 
 TEST(Md5Anim, AcceptsUnanimatedJointWhoseFirstComponentIsOnePastTheEnd) {
     // Exporters write the running count there; the index is never read.
-    const Md5Anim a = parseGood(animWith("\"Spine\"\t1 4 4", "\"Spine\"\t1 0 5"));
+    const Md5Anim a = parseAnimGood(animWith("\"Spine\"\t1 4 4", "\"Spine\"\t1 0 5"));
     EXPECT_EQ(evaluateMd5AnimFrame(a, 1)[2].translation, (Real3{0, 0, 10}));
 }
 
 TEST(Md5Anim, RejectsFlagsBeyondTheSixComponentBits) {
-    EXPECT_EQ(onlyError(animWith("\"Hips\"\t0 40 2", "\"Hips\"\t0 64 2")),
+    EXPECT_EQ(onlyAnimError(animWith("\"Hips\"\t0 40 2", "\"Hips\"\t0 64 2")),
               "bad.md5anim:11:11: error: expected flags from 0 to 63 (1 Tx, 2 Ty, 4 Tz, 8 Qx, 16 Qy, 32 Qz), "
               "found '64'");
 }
 
 TEST(Md5Anim, RejectsJointWhoseComponentsRunPastTheFrame) {
-    EXPECT_EQ(onlyError(animWith("\"Spine\"\t1 4 4", "\"Spine\"\t1 4 5")),
+    EXPECT_EQ(onlyAnimError(animWith("\"Spine\"\t1 4 4", "\"Spine\"\t1 4 5")),
               "bad.md5anim:12:14: error: expected a first component index from 0 to 4 (numAnimatedComponents 5, "
               "this joint animates 1), found '5'");
-    EXPECT_EQ(onlyError(animWith("\"Hips\"\t0 40 2", "\"Hips\"\t0 40 4")),
+    EXPECT_EQ(onlyAnimError(animWith("\"Hips\"\t0 40 2", "\"Hips\"\t0 40 4")),
               "bad.md5anim:11:14: error: expected a first component index from 0 to 3 (numAnimatedComponents 5, "
               "this joint animates 2), found '4'");
 }
 
 TEST(Md5Anim, RejectsSecondRoot) {
-    EXPECT_EQ(onlyError(animWith("\"Spine\"\t1", "\"Spine\"\t-1")),
+    EXPECT_EQ(onlyAnimError(animWith("\"Spine\"\t1", "\"Spine\"\t-1")),
               "bad.md5anim:12:10: error: expected a parent index from 0 to 1 (only the first joint is a root; a "
               "parent comes before its children), found '-1'");
 }
 
 TEST(Md5Anim, RejectsParentThatDoesNotPrecedeItsChild) {
-    EXPECT_EQ(onlyError(animWith("\"Hips\"\t0", "\"Hips\"\t1")),
+    EXPECT_EQ(onlyAnimError(animWith("\"Hips\"\t0", "\"Hips\"\t1")),
               "bad.md5anim:11:9: error: expected a parent index from 0 to 0 (only the first joint is a root; a "
               "parent comes before its children), found '1'");
 }
 
 TEST(Md5Anim, RejectsFramesOutOfOrder) {
-    EXPECT_EQ(onlyError(animWith("frame 1 {", "frame 2 {")),
+    EXPECT_EQ(onlyAnimError(animWith("frame 1 {", "frame 2 {")),
               "bad.md5anim:30:7: error: expected frame number 1 (frames count up from 0), found '2'");
 }
 
 TEST(Md5Anim, RejectsFrameWithTooFewComponents) {
-    EXPECT_EQ(onlyError(animWith("\t10 20 0 0 10\n", "\t10 20 0 0\n")),
+    EXPECT_EQ(onlyAnimError(animWith("\t10 20 0 0 10\n", "\t10 20 0 0\n")),
               "bad.md5anim:28:1: error: expected a number for component 4 of frame 0 (numAnimatedComponents 5), "
               "found '}'");
 }
 
 TEST(Md5Anim, RejectsFrameWithTooManyComponents) {
-    EXPECT_EQ(onlyError(animWith("\t10 20 0 0 10\n", "\t10 20 0 0 10 11\n")),
+    EXPECT_EQ(onlyAnimError(animWith("\t10 20 0 0 10\n", "\t10 20 0 0 10 11\n")),
               "bad.md5anim:27:15: error: expected '}' after the 5 components of frame 0 (numAnimatedComponents), "
               "found '11'");
 }
 
 TEST(Md5Anim, RejectsMissingFrames) {
-    EXPECT_EQ(onlyError(animWith("numFrames 2", "numFrames 3")),
+    EXPECT_EQ(onlyAnimError(animWith("numFrames 2", "numFrames 3")),
               "bad.md5anim:18:1: error: expected '(' before the minimum of the bounds of frame 2, found '}'");
 }
 
 TEST(Md5Anim, RejectsZeroFrames) {
-    EXPECT_EQ(onlyError(animWith("numFrames 2", "numFrames 0")),
+    EXPECT_EQ(onlyAnimError(animWith("numFrames 2", "numFrames 0")),
               "bad.md5anim:4:11: error: expected numFrames greater than 0, found '0'");
 }
 
 TEST(Md5Anim, RejectsMoreAnimatedComponentsThanSixPerJoint) {
-    EXPECT_EQ(onlyError(animWith("numAnimatedComponents 5", "numAnimatedComponents 19")),
+    EXPECT_EQ(onlyAnimError(animWith("numAnimatedComponents 5", "numAnimatedComponents 19")),
               "bad.md5anim:7:23: error: expected numAnimatedComponents from 0 to 18 (6 per joint), found '19'");
 }
 
 TEST(Md5Anim, RejectsTrailingTokens) {
-    EXPECT_EQ(onlyError(kAnim + "frame 2 { }\n"),
+    EXPECT_EQ(onlyAnimError(kAnim + "frame 2 { }\n"),
               "bad.md5anim:33:1: error: expected end of file after the 2 frames (numFrames), found 'frame'");
 }
 
@@ -233,26 +233,26 @@ TEST(Md5Anim, MatchesMeshWithSameNamesAndParents) {
     const Md5MeshParseResult mesh = parseMd5Mesh(kMatchingMesh, "m.md5mesh");
     ASSERT_TRUE(mesh.ok()) << mesh.diagnostics.formatAll();
     Diagnostics d("test.md5anim");
-    checkMd5AnimMatchesMesh(parseGood(kAnim), mesh.mesh, d);
+    checkMd5AnimMatchesMesh(parseAnimGood(kAnim), mesh.mesh, d);
     EXPECT_FALSE(d.hasErrors()) << d.formatAll();
 }
 
 TEST(Md5Anim, MismatchWithMeshNamesTheJoint) {
     const Md5MeshParseResult mesh = parseMd5Mesh(kMatchingMesh, "m.md5mesh");
     Diagnostics names("test.md5anim");
-    checkMd5AnimMatchesMesh(parseGood(animWith("\"Hips\"", "\"hips\"")), mesh.mesh, names);
+    checkMd5AnimMatchesMesh(parseAnimGood(animWith("\"Hips\"", "\"hips\"")), mesh.mesh, names);
     EXPECT_EQ(names.formatAll(),
               "test.md5anim:11:2: error: expected joint 1 to be named \"Hips\" as in the mesh, found \"hips\"\n");
 
     Diagnostics parents("test.md5anim");
-    checkMd5AnimMatchesMesh(parseGood(animWith("\"Spine\"\t1", "\"Spine\"\t0")), mesh.mesh, parents);
+    checkMd5AnimMatchesMesh(parseAnimGood(animWith("\"Spine\"\t1", "\"Spine\"\t0")), mesh.mesh, parents);
     EXPECT_EQ(parents.formatAll(),
               "test.md5anim:12:2: error: expected parent 1 for joint \"Spine\" as in the mesh, found '0'\n");
 
     Diagnostics count("test.md5anim");
     Md5Mesh shorter = mesh.mesh;
     shorter.joints.pop_back();
-    checkMd5AnimMatchesMesh(parseGood(kAnim), shorter, count);
+    checkMd5AnimMatchesMesh(parseAnimGood(kAnim), shorter, count);
     EXPECT_EQ(count.formatAll(), "test.md5anim:5:11: error: expected numJoints 2 as in the mesh, found '3'\n");
 }
 

@@ -49,7 +49,7 @@ std::string meshWith(const std::string& from, const std::string& to) {
 }
 
 // The only diagnostic of a text that must not load.
-std::string onlyError(const std::string& text) {
+std::string onlyMeshError(const std::string& text) {
     const Md5MeshParseResult r = parseMd5Mesh(text, "bad.md5mesh");
     EXPECT_FALSE(r.ok());
     EXPECT_EQ(r.diagnostics.all().size(), 1u) << r.diagnostics.formatAll();
@@ -114,81 +114,81 @@ TEST(Md5Mesh, AcceptsOptionalMeshNameAndZeroMeshes) {
 }
 
 TEST(Md5Mesh, RejectsOtherVersions) {
-    EXPECT_EQ(onlyError(meshWith("MD5Version 10", "MD5Version 11")),
+    EXPECT_EQ(onlyMeshError(meshWith("MD5Version 10", "MD5Version 11")),
               "bad.md5mesh:1:12: error: expected MD5Version 10, found '11'");
 }
 
 TEST(Md5Mesh, KeywordsAreCaseSensitiveAsInDoom) {
-    EXPECT_EQ(onlyError(meshWith("numJoints", "numjoints")),
+    EXPECT_EQ(onlyMeshError(meshWith("numJoints", "numjoints")),
               "bad.md5mesh:4:1: error: expected 'numJoints', found 'numjoints'");
 }
 
 TEST(Md5Mesh, RejectsParentThatDoesNotPrecedeItsChild) {
-    EXPECT_EQ(onlyError(meshWith("\"Spine\"\t1", "\"Spine\"\t2")),
+    EXPECT_EQ(onlyMeshError(meshWith("\"Spine\"\t1", "\"Spine\"\t2")),
               "bad.md5mesh:10:10: error: expected a parent index from 0 to 1 (a parent comes before its children), "
               "found '2'");
 }
 
 TEST(Md5Mesh, RejectsSecondRoot) {
-    EXPECT_EQ(onlyError(meshWith("\"Spine\"\t1", "\"Spine\"\t-1")),
+    EXPECT_EQ(onlyMeshError(meshWith("\"Spine\"\t1", "\"Spine\"\t-1")),
               "bad.md5mesh:10:10: error: expected a parent index from 0 to 1 (a parent comes before its children), "
               "found '-1'");
 }
 
 TEST(Md5Mesh, RejectsFirstJointWithParent) {
-    EXPECT_EQ(onlyError(meshWith("\"origin\"\t-1", "\"origin\"\t0")),
+    EXPECT_EQ(onlyMeshError(meshWith("\"origin\"\t-1", "\"origin\"\t0")),
               "bad.md5mesh:8:11: error: expected parent -1 for the first joint (the root), found '0'");
 }
 
 TEST(Md5Mesh, RejectsFewerJointsThanNumJoints) {
-    EXPECT_EQ(onlyError(meshWith("numJoints 3", "numJoints 4")),
+    EXPECT_EQ(onlyMeshError(meshWith("numJoints 3", "numJoints 4")),
               "bad.md5mesh:11:1: error: expected the name of joint 4 of 4 (numJoints), found '}'");
 }
 
 TEST(Md5Mesh, RejectsMoreJointsThanNumJoints) {
-    EXPECT_EQ(onlyError(meshWith("numJoints 3", "numJoints 2")),
+    EXPECT_EQ(onlyMeshError(meshWith("numJoints 3", "numJoints 2")),
               "bad.md5mesh:10:2: error: expected '}' after the 2 joints (numJoints), found \"Spine\"");
 }
 
 TEST(Md5Mesh, RejectsJointNamesThatDifferOnlyInCase) {
-    EXPECT_EQ(onlyError(meshWith("\"Spine\"", "\"hips\"")),
+    EXPECT_EQ(onlyMeshError(meshWith("\"Spine\"", "\"hips\"")),
               "bad.md5mesh:10:2: error: expected a unique joint name, found \"hips\" (joint 1 at line 9 has the "
               "same name, ignoring case)");
 }
 
 TEST(Md5Mesh, RejectsWeightOnJointThatDoesNotExist) {
-    EXPECT_EQ(onlyError(meshWith("weight 2 2 1", "weight 2 3 1")),
+    EXPECT_EQ(onlyMeshError(meshWith("weight 2 2 1", "weight 2 3 1")),
               "bad.md5mesh:24:11: error: expected a joint index from 0 to 2, found '3'");
 }
 
 TEST(Md5Mesh, RejectsVertexWithoutWeights) {
-    EXPECT_EQ(onlyError(meshWith("vert 1 ( 1 0 ) 1 1", "vert 1 ( 1 0 ) 1 0")),
+    EXPECT_EQ(onlyMeshError(meshWith("vert 1 ( 1 0 ) 1 1", "vert 1 ( 1 0 ) 1 0")),
               "bad.md5mesh:17:19: error: expected a weight count greater than 0, found '0'");
 }
 
 TEST(Md5Mesh, RejectsVerticesThatUseMoreWeightsThanDeclared) {
-    EXPECT_EQ(onlyError(meshWith("vert 2 ( 0 1 ) 2 1", "vert 2 ( 0 1 ) 2 2")),
+    EXPECT_EQ(onlyMeshError(meshWith("vert 2 ( 0 1 ) 2 1", "vert 2 ( 0 1 ) 2 2")),
               "bad.md5mesh:21:13: error: expected numweights of at least 4 (the vertices use that many), found '3'");
 }
 
 TEST(Md5Mesh, RejectsTriangleOnVertexThatDoesNotExist) {
-    EXPECT_EQ(onlyError(meshWith("tri 0 0 1 2", "tri 0 0 1 3")),
+    EXPECT_EQ(onlyMeshError(meshWith("tri 0 0 1 2", "tri 0 0 1 3")),
               "bad.md5mesh:20:12: error: expected a vertex index from 0 to 2, found '3'");
 }
 
 TEST(Md5Mesh, RejectsFewerMeshesThanNumMeshes) {
-    EXPECT_EQ(onlyError(meshWith("numMeshes 1", "numMeshes 2")),
+    EXPECT_EQ(onlyMeshError(meshWith("numMeshes 1", "numMeshes 2")),
               "bad.md5mesh:26:1: error: expected 'mesh' 2 of 2 (numMeshes), found end of file");
 }
 
 TEST(Md5Mesh, RejectsMoreVertsThanNumverts) {
-    EXPECT_EQ(onlyError(meshWith("numverts 3", "numverts 2")),
+    EXPECT_EQ(onlyMeshError(meshWith("numverts 3", "numverts 2")),
               "bad.md5mesh:18:2: error: expected 'numtris', found 'vert'");
 }
 
 TEST(Md5Mesh, RejectsCommasInsideTuples) {
     // Parse1DMatrix takes no commas; a comma is the classic hand-editing mistake.
-    EXPECT_EQ(onlyError(meshWith("( 1 -2 40.5 )", "( 1, -2, 40.5 )")),
+    EXPECT_EQ(onlyMeshError(meshWith("( 1 -2 40.5 )", "( 1, -2, 40.5 )")),
               "bad.md5mesh:9:14: error: expected a number for the joint position, found ','");
 }
 

@@ -10,15 +10,15 @@ namespace {
 
 using Names = std::vector<std::string>;
 
-struct Console {
+struct CompletionConsole {
     CommandSystem commands;
     Session session{{AF_SOURCE_DIR}, commands};
-    Console() { EXPECT_TRUE(commands.execute("spawn ragdoll_humanoid\nspawn af_lamp origin \"200 0 60\" name lamp", "test.cfg").ok()); }
+    CompletionConsole() { EXPECT_TRUE(commands.execute("spawn ragdoll_humanoid\nspawn af_lamp origin \"200 0 60\" name lamp", "test.cfg").ok()); }
     Names complete(std::string_view line) const { return completeConsoleLine(commands, session, line); }
 };
 
 TEST(ConsoleCompletion, DragCompletesTheNamedEntitysBodies) {
-    Console c;
+    CompletionConsole c;
     EXPECT_EQ(c.complete("drag ragdoll_humanoid_1 rh"), (Names{"rhand"}));
     EXPECT_EQ(c.complete("drag RAGDOLL_HUMANOID_1 l").size(), 6u) << "luparm, lloarm, lhand, lthigh, lshin, lfoot";
     EXPECT_EQ(c.complete("drag lamp ").size(), c.session.bodyNames("lamp").size());
@@ -28,7 +28,7 @@ TEST(ConsoleCompletion, DragCompletesTheNamedEntitysBodies) {
 }
 
 TEST(ConsoleCompletion, HighlightCvarsCompleteEveryRagdollsBodiesAndConstraints) {
-    Console c;
+    CompletionConsole c;
     EXPECT_EQ(c.complete("af_highlightBody rh"), (Names{"rhand"}));
     EXPECT_EQ(c.complete("set af_highlightBody rha"), (Names{"rhand"}));
     EXPECT_EQ(c.complete("af_highlightConstraint rk"), (Names{"rknee"}));
@@ -38,7 +38,7 @@ TEST(ConsoleCompletion, HighlightCvarsCompleteEveryRagdollsBodiesAndConstraints)
 }
 
 TEST(ConsoleCompletion, OtherWordsCompleteAsTheConsoleCompletesThem) {
-    Console c;
+    CompletionConsole c;
     for (const char* line : {"", "af_show", "set af_showM", "af_showMass ", "spawn rag", "help dr", "list "})
         EXPECT_EQ(c.complete(line), c.commands.complete(line)) << line;
 }

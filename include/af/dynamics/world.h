@@ -29,7 +29,9 @@
 //     step, at rest, and the step's report names them (StepReport::restored). Others go on.
 //
 // Rest and wake (docs/doom-physics.md §4.11, rest.h): after each step every awake figure's
-// RestMonitor is asked. Figures that touch each other form a group that rests only when all of
+// RestMonitor is asked. A figure still but with a joint open or a contact deep (beyond
+// kStuckJointError, kStuckPenetration) does not rest: it is stuck, and the step's report says so
+// (StepReport::stuck). Figures that touch each other form a group that rests only when all of
 // them would, and then rests together; a resting figure's bodies have zero velocity, are not
 // integrated and cost no solver time. A resting figure wakes, with everything it touches, when
 // an awake body touches it, when an impulse above impulseThreshold or any force is applied to
@@ -135,12 +137,29 @@ struct RestoredFigure {
     Real budget = 0;  // EnergyGain: what it had before and the step could supply
 };
 
+// A figure that came to a standstill where it cannot be: a joint open or a contact deep, held
+// there (a limb spawned inside a brush with its joints pulled apart, a figure wedged into
+// another). It is not put to rest, since resting would freeze the error; it stays awake, and
+// rests as soon as it is free and still.
+// A still figure is stuck when a joint of it is open wider than kStuckJointError (a closed
+// joint's error is rounding, 1e-10 units) or a contact of it deeper than kStuckPenetration (twice
+// the default contact slop, which the projection leaves alone).
+inline constexpr Real kStuckJointError = 0.05;
+inline constexpr Real kStuckPenetration = 0.1;
+
+struct StuckFigure {
+    FigureId figure;
+    Real jointError = 0;   // its widest joint gap, units
+    Real penetration = 0;  // its deepest contact, units
+};
+
 // What the last step did.
 struct StepReport {
     int rows = 0;       // velocity rows of the last substep
     Real residual = 0;  // LCP residual of the last velocity solve
     int failures = 0;   // solves of this step that did not report Solved
     std::vector<RestoredFigure> restored;  // each reported in the step that found it, once
+    std::vector<StuckFigure> stuck;  // reported in the step it stopped stuck, once until it frees
 };
 
 // A body of a figure: the figure and the body's index in its definition.
