@@ -16,6 +16,9 @@ namespace {
 // A bone shorter than this fraction of the figure's size is no body of its own (a neck of 3 units
 // on a 70-unit humanoid, finger bones); 5 % keeps our humanoid's clavicles (6 units) only by name.
 constexpr Real kTinyBoneFraction = 0.05;
+// ... and shorter than this fraction of its parent's bone: a segment of a centipede 120 units
+// long is 6, under 5 %, but as long as the segment before it.
+constexpr Real kTinyAgainstParent = 0.5;
 
 // Parts that a ragdoll does not swing on their own, whatever their size: they ride on their
 // parent's body (lower-case substrings of the joint's name).
@@ -33,21 +36,23 @@ bool listed(const std::vector<std::string>& names, const std::string& joint) {
     return std::any_of(names.begin(), names.end(), [&](const std::string& n) { return equalsIgnoreCase(n, joint); });
 }
 
-// The largest distance between two of the skeleton's joints or vertices, along an axis.
+}  // namespace
+
 Real figureSize(const Skeleton& pose, const std::vector<MeshPoint>& points) {
     Vec3 lo = Vec3::Constant(1e30), hi = Vec3::Constant(-1e30);
-    for (const JointTransform& j : pose.joints) {
-        lo = lo.cwiseMin(j.position);
-        hi = hi.cwiseMax(j.position);
+    for (std::size_t j = 0; j < pose.size(); ++j) {
+        // The `origin` joint stands on the floor under a figure, wherever its body is (the chain
+        // hangs 64 units above its origin): it is no part of the figure's size.
+        if (equalsIgnoreCase(pose.names[j], "origin")) continue;
+        lo = lo.cwiseMin(pose.joints[j].position);
+        hi = hi.cwiseMax(pose.joints[j].position);
     }
     for (const MeshPoint& p : points) {
         lo = lo.cwiseMin(p.position);
         hi = hi.cwiseMax(p.position);
     }
-    return (hi - lo).maxCoeff();
+    return hi.x() >= lo.x() ? std::max((hi - lo).maxCoeff(), Real(1)) : Real(1);
 }
-
-}  // namespace
 
 int rootJoint(const Skeleton& skeleton) {
     const int origin = skeleton.find("origin");
@@ -114,10 +119,17 @@ std::vector<GenBody> groupJoints(const Skeleton& pose, const std::vector<MeshPoi
         // The `origin` joint is the root body's by the format's rule (docs/figures.md §3.6).
         bool own = below && (childCount[j] > 0 || weighted[j] > 0) && !equalsIgnoreCase(lower, "origin");
         if (own && nameHas(lower, kEndPartNames)) own = false;
-        if (own && bone[j] < tiny && !nameHas(lower, kMainPartNames)) own = false;
+        // Tiny: short for the figure, and beside its parent's bone (a neck under a chest, not the
+        // even segments of a long body) or under a joint that is no body of its own (the second
+        // bone of a ponytail whose first was tiny).
+        const int parent = pose.parents[j];
+        const auto p = static_cast<std::size_t>(parent);
+        const bool parentOwn = below && bodies[static_cast<std::size_t>(bodyOf[p])].joint == parent;
+        const bool shortHere = !parentOwn || bone[j] < kTinyAgainstParent * bone[p];
+        if (own && bone[j] < tiny && shortHere && !nameHas(lower, kMainPartNames)) own = false;
         if (below && listed(options.keep, pose.names[j])) own = true;
         if (listed(options.merge, pose.names[j])) own = false;
-        const int parentBody = below ? bodyOf[static_cast<std::size_t>(pose.parents[j])] : 0;
+        const int parentBody = below ? bodyOf[p] : 0;
         if (!own) {
             bodyOf[j] = parentBody;
             continue;

@@ -55,6 +55,10 @@ struct GenBody {
     Real mass = 0;
 };
 
+// The figure's largest extent along an axis, over its joints (but `origin`) and vertices; at
+// least 1. The size that "tiny", a shape's least width and the default mass are measured by.
+Real figureSize(const Skeleton& afPose, const std::vector<MeshPoint>& points);
+
 // The joint that an `origin` body drives (docs/figures.md §3.6): the first child of the joint
 // named `origin`, or joint 0 when there is none.
 int rootJoint(const Skeleton& skeleton);

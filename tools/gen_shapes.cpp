@@ -16,21 +16,22 @@ constexpr int kMinVertices = 8;
 // of their length across), and never under kMinRadiusFraction of the figure's size.
 constexpr Real kRadiusFraction = 0.2;
 constexpr Real kMinRadiusFraction = 0.02;
-// Vertices behind the joint (the flesh around a hip or a shoulder) widen a body at most this
-// fraction of its bone back into its parent: more starts it inside the parent (figure_checks'
-// 20 % overlap warning).
-constexpr Real kBehindFraction = 0.1;
 // No side of a shape under a quarter of its longest: the principal moments then stay within 16:1,
 // below figure_checks' 20:1 warning.
 constexpr Real kMinAspect = 0.25;
 // Masses across a joint within 8:1, well inside figure_checks' 20:1 warning.
 constexpr Real kMaxMassRatio = 8;
+// A child more than 60° off the bone coming in does not carry that bone on.
+constexpr Real kGoesOnCos = 0.5;
+// An end body whose flesh reaches this share of its farthest point's distance along the bone
+// coming in carries that bone on (our humanoid's head: all of it; its foot: 2 of 6.3, no).
+constexpr Real kGoesOnShare = 0.4;
 // Cross-sections rounder than this (larger over smaller side) are cylinders.
 constexpr Real kCylinderAspect = 1.6;
 constexpr int kCylinderSides = 8;
 // Our humanoid: 150 mass units for 70 units of height (af/humanoid.af).
 constexpr Real kHumanoidMass = 150;
-constexpr Real kHumanoidSize = 70;
+constexpr Real kHumanoidSize = 69;  // its toes (z 1) to its head's top (z 70)
 
 const Vec3 kForward = Vec3::UnitX();  // docs/conventions.md §0.2
 const Vec3 kUp = Vec3::UnitZ();
@@ -77,31 +78,53 @@ Vec3 boneEnd(const std::vector<GenBody>& bodies, const GenBody& body, const Skel
         };
         const auto main = std::max_element(body.children.begin(), body.children.end(),
                                            [&](int a, int b) { return score(a) < score(b); });
-        return joint(pose, bodies[static_cast<std::size_t>(*main)].joint);
+        const Vec3 mainJoint = joint(pose, bodies[static_cast<std::size_t>(*main)].joint);
+        if (in.isZero() || in.dot((mainJoint - start).normalized()) >= kGoesOnCos) return mainJoint;
+        // Every child branches off (the last segment of a centipede, between its legs): the bone
+        // goes on the way it came, over the body's own joints and vertices, at least half as
+        // long as the bone before it.
+        Real length = 0.5 * (start - joint(pose, parentJoint)).norm();
+        for (int j : body.joints)
+            if (j > body.joint) length = std::max(length, in.dot(joint(pose, j) - start));
+        for (const Vec3& v : vertices) length = std::max(length, in.dot(v - start));
+        return start + length * in;
     }
     Vec3 end = start;
     for (int j : body.joints)
         if (j > body.joint && (joint(pose, j) - start).norm() > (end - start).norm()) end = joint(pose, j);
     for (const Vec3& v : vertices)
         if ((v - start).norm() > (end - start).norm()) end = v;
-    return end;
+    // An end that reaches on the way the bone came in (a head on its neck) goes on exactly that
+    // way, so that the body starts square across its parent's end, not slanted into it; its
+    // farthest point may be a ponytail or a jaw. One that mostly turns off (a foot) goes to its
+    // farthest point.
+    const int parentJoint = pose.parents[static_cast<std::size_t>(body.joint)];
+    if (body.parent < 0 || parentJoint < 0 || (end - start).norm() < 1e-9) return end;
+    const Vec3 in = start - joint(pose, parentJoint);
+    if (in.norm() < 1e-9) return end;
+    const Vec3 d = in.normalized();
+    Real length = 0;
+    for (int j : body.joints)
+        if (j > body.joint) length = std::max(length, d.dot(joint(pose, j) - start));
+    for (const Vec3& v : vertices) length = std::max(length, d.dot(v - start));
+    return length >= kGoesOnShare * (end - start).norm() ? Vec3(start + length * d) : end;
 }
 
 GenShape shapeOf(const std::vector<GenBody>& bodies, const GenBody& body, const Skeleton& pose,
-                 const std::vector<Vec3>& vertices, Real figureSize) {
+                 const std::vector<Vec3>& vertices, Real size) {
     const Vec3 start = joint(pose, body.joint);
     Vec3 bone = body.boneEnd - start;
-    if (bone.norm() < 1e-6 * figureSize) {
+    if (bone.norm() < 1e-6 * size) {
         // A lone joint with nothing beyond it: carry on its parent's bone, half as long.
         const int p = pose.parents[static_cast<std::size_t>(body.joint)];
         const Vec3 parentBone = p >= 0 ? Vec3(start - joint(pose, p)) : Vec3(Vec3::Zero());
-        bone = parentBone.norm() > 1e-6 * figureSize ? Vec3(0.5 * parentBone) : Vec3(0.1 * figureSize * kUp);
+        bone = parentBone.norm() > 1e-6 * size ? Vec3(0.5 * parentBone) : Vec3(0.1 * size * kUp);
     }
     const Real length = bone.norm();
     GenShape shape;
     shape.rotation = boneFrame(bone / length);
     const Mat3 toLocal = shape.rotation.transpose();
-    const Real radius = std::max(kRadiusFraction * length, kMinRadiusFraction * figureSize);
+    const Real radius = std::max(kRadiusFraction * length, kMinRadiusFraction * size);
 
     Vec3 lo(0, 0, 0), hi(0, 0, length);
     const auto grow = [&](const Vec3& p) {
@@ -113,7 +136,9 @@ GenShape shapeOf(const std::vector<GenBody>& bodies, const GenBody& body, const 
         shape.meshVertices = static_cast<int>(vertices.size());
         for (const Vec3& v : vertices) {
             Vec3 local = toLocal * (v - start);
-            local.z() = std::max(local.z(), -kBehindFraction * length);
+            // Behind the joint is the parent's flesh (round a hip, a shoulder): a body that starts
+            // at its joint never starts inside its parent (figure_checks' 20 % overlap warning).
+            local.z() = std::max(local.z(), Real(0));
             // Beyond the main child's joint the vertices are that child's flesh.
             if (!body.children.empty()) local.z() = std::min(local.z(), length);
             grow(local);
@@ -125,20 +150,23 @@ GenShape shapeOf(const std::vector<GenBody>& bodies, const GenBody& body, const 
     // The body's own joints (a clavicle, a toe) inside it; its other children's joints on its
     // surface, where their bodies start.
     for (int j : body.joints) {
-        // Joints above the body's own (the root body's `origin`, on the floor) are not its flesh.
+        // Joints above the body's own (the root body's `origin`, on the floor) are not its flesh;
+        // those behind its joint (a jaw under a head) widen it but do not take it into its parent.
         if (j < body.joint) continue;
-        const Vec3 local = toLocal * (joint(pose, j) - start);
+        Vec3 local = toLocal * (joint(pose, j) - start);
+        local.z() = std::max(local.z(), Real(0));
         grow(local + Vec3(radius, radius, 0));
         grow(local - Vec3(radius, radius, 0));
     }
     for (int c : body.children) grow(toLocal * (joint(pose, bodies[static_cast<std::size_t>(c)].joint) - start));
 
     // Stout enough for figure_checks' inertia warning.
-    const Vec3 size = hi - lo;
-    const Real least = kMinAspect * size.maxCoeff();
+    const Vec3 extent = hi - lo;
+    const Real least = kMinAspect * extent.maxCoeff();
     for (int k = 0; k < 3; ++k) {
-        const Real grown = std::max(0.0, least - size[k]) / 2;
-        lo[k] -= grown;
+        // Across the bone both ways; along it only onward, away from the parent.
+        const Real grown = std::max(0.0, least - extent[k]) / (k == 2 ? 1 : 2);
+        lo[k] -= k == 2 ? 0 : grown;
         hi[k] += grown;
     }
     shape.lower = lo;
@@ -161,27 +189,13 @@ Real volumeOf(const GenShape& shape) {
 }  // namespace
 
 Real defaultTotalMass(const Skeleton& pose, const std::vector<MeshPoint>& points) {
-    Vec3 lo = Vec3::Constant(1e30), hi = Vec3::Constant(-1e30);
-    for (const JointTransform& j : pose.joints) {
-        lo = lo.cwiseMin(j.position);
-        hi = hi.cwiseMax(j.position);
-    }
-    for (const MeshPoint& p : points) {
-        lo = lo.cwiseMin(p.position);
-        hi = hi.cwiseMax(p.position);
-    }
-    const Real scale = std::max((hi - lo).maxCoeff(), Real(1)) / kHumanoidSize;
+    const Real scale = figureSize(pose, points) / kHumanoidSize;
     return kHumanoidMass * scale * scale * scale;
 }
 
 void sizeBodies(std::vector<GenBody>& bodies, const Skeleton& pose, const std::vector<MeshPoint>& points,
                 Real totalMass) {
-    Vec3 lo = Vec3::Constant(1e30), hi = Vec3::Constant(-1e30);
-    for (const JointTransform& j : pose.joints) {
-        lo = lo.cwiseMin(j.position);
-        hi = hi.cwiseMax(j.position);
-    }
-    const Real figureSize = std::max((hi - lo).maxCoeff(), Real(1));
+    const Real size = figureSize(pose, points);
 
     std::vector<int> bodyOf(pose.size(), 0);
     for (std::size_t b = 0; b < bodies.size(); ++b)
@@ -193,7 +207,7 @@ void sizeBodies(std::vector<GenBody>& bodies, const Skeleton& pose, const std::v
     Real volume = 0;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         bodies[b].boneEnd = boneEnd(bodies, bodies[b], pose, vertices[b]);
-        bodies[b].shape = shapeOf(bodies, bodies[b], pose, vertices[b], figureSize);
+        bodies[b].shape = shapeOf(bodies, bodies[b], pose, vertices[b], size);
         volume += volumeOf(bodies[b].shape);
     }
     // One density for the whole figure, then each body (parents come first) kept near its parent.

@@ -1,0 +1,403 @@
+// af-gen run as a modder runs it, from a mod folder: on our humanoid, the figure has the bodies
+// and joint kinds a person would give it; on made-up skeletons (a chain, a quadruped, 100 joints)
+// the figure loads without warnings, every joint is contained once, and dropped by af-sim into
+// the default world it comes to rest with its joints closed and its limits kept. Bad input is
+// refused with one message and exit status 2, and nothing is written.
+
+#include "af/figure/figure.h"
+#include "af/text/af_parser.h"
+#include "af/text/resource_index.h"
+
+#include "tool_run.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using af::test::runTool;
+using af::test::ToolRun;
+
+const std::string kGen = AF_GEN_PATH;
+const std::string kCheck = AF_CHECK_PATH;
+const std::string kSim = AF_SIM_PATH;
+
+std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// af-gen run from `modFolder`, as the modder runs it.
+ToolRun afGen(const fs::path& modFolder, const std::string& arguments) {
+    return runTool("cd " + quoted(modFolder) + " && " + kGen + " " + arguments);
+}
+
+// ---- made-up skeletons, written as md5mesh text ----
+
+struct SynthJoint {
+    std::string name;
+    int parent = -1;
+    af::Vec3 position = af::Vec3::Zero();
+    double radius = 0;  // > 0: mesh vertices around its bone (or around it, at an end), weighted to it
+};
+
+std::string number(double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6f", x);
+    return buffer;
+}
+
+std::string tuple(const af::Vec3& v) { return "( " + number(v.x()) + " " + number(v.y()) + " " + number(v.z()) + " )"; }
+
+// The joints with identity orientations; each joint with a radius gets rings of vertices around
+// its bone (to its first child, or a short stub on from its parent's bone at an end), each vertex
+// weighted wholly to it. Weights are in the joint's frame, which is the model's here.
+std::string md5meshText(const std::vector<SynthJoint>& joints) {
+    std::vector<af::Vec3> vertices;
+    std::vector<int> owners;
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+        const SynthJoint& joint = joints[j];
+        if (joint.radius <= 0) continue;
+        af::Vec3 bone = af::Vec3::Zero();
+        for (const SynthJoint& child : joints)
+            if (&child != &joint && child.parent == static_cast<int>(j)) {
+                bone = child.position - joint.position;
+                break;
+            }
+        if (bone.isZero()) {
+            const af::Vec3 in = joint.position - joints[static_cast<std::size_t>(joint.parent)].position;
+            bone = in.normalized() * 2 * joint.radius;
+        }
+        const af::Vec3 d = bone.normalized();
+        const af::Vec3 a = (std::fabs(d.z()) < 0.9 ? af::Vec3::UnitZ() : af::Vec3::UnitX()).cross(d).normalized();
+        const af::Vec3 b = d.cross(a);
+        for (double t : {0.15, 0.5, 0.85})
+            for (int k = 0; k < 6; ++k) {
+                const double phi = k * std::acos(-1.0) / 3;
+                vertices.push_back(joint.position + t * bone + joint.radius * (std::cos(phi) * a + std::sin(phi) * b));
+                owners.push_back(static_cast<int>(j));
+            }
+    }
+    std::string text = "MD5Version 10\ncommandline \"af_gen_test\"\n\nnumJoints " + std::to_string(joints.size()) +
+                       "\nnumMeshes " + std::string(vertices.empty() ? "0" : "1") + "\n\njoints {\n";
+    for (const SynthJoint& j : joints)
+        text += "\t\"" + j.name + "\"\t" + std::to_string(j.parent) + " " + tuple(j.position) + " ( 0 0 0 )\n";
+    text += "}\n";
+    if (vertices.empty()) return text;
+    text += "\nmesh {\n\tshader \"skin\"\n\n\tnumverts " + std::to_string(vertices.size()) + "\n";
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+        text += "\tvert " + std::to_string(v) + " ( 0 0 ) " + std::to_string(v) + " 1\n";
+    text += "\n\tnumtris 0\n\n\tnumweights " + std::to_string(vertices.size()) + "\n";
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+        text += "\tweight " + std::to_string(v) + " " + std::to_string(owners[v]) + " 1 " +
+                tuple(vertices[v] - joints[static_cast<std::size_t>(owners[v])].position) + "\n";
+    return text + "}\n";
+}
+
+struct Builder {
+    std::vector<SynthJoint> joints;
+    int add(const std::string& name, int parent, const af::Vec3& position, double radius = 0) {
+        joints.push_back({name, parent, position, radius});
+        return static_cast<int>(joints.size()) - 1;
+    }
+};
+
+// Eight links along +x, 64 units up, the skin 1.5 units round: nothing in their names says what
+// they are.
+std::vector<SynthJoint> chain() {
+    Builder s;
+    int parent = s.add("origin", -1, af::Vec3::Zero());
+    for (int i = 1; i <= 8; ++i) parent = s.add("link" + std::to_string(i), parent, af::Vec3(6.0 * (i - 1), 0, 64), 1.5);
+    return s.joints;
+}
+
+// A dog standing on four legs, facing +x, with a jaw and eyes in its head, toes on its paws and a
+// tail: the grouping folds the end parts into their parents and the names give the joint kinds.
+std::vector<SynthJoint> quadruped() {
+    Builder s;
+    const int origin = s.add("origin", -1, af::Vec3::Zero());
+    const int hips = s.add("hips", origin, af::Vec3(-14, 0, 24), 5);
+    const int spine = s.add("spine", hips, af::Vec3(0, 0, 25), 5);
+    const int chest = s.add("chest", spine, af::Vec3(14, 0, 25), 5.5);
+    const int neck = s.add("neck", chest, af::Vec3(20, 0, 30), 3);
+    const int head = s.add("head", neck, af::Vec3(24, 0, 36), 3.5);
+    s.add("jaw", head, af::Vec3(27, 0, 33), 1.5);
+    s.add("eye_l", head, af::Vec3(28, 2, 37));
+    s.add("eye_r", head, af::Vec3(28, -2, 37));
+    const int tail1 = s.add("tail1", hips, af::Vec3(-22, 0, 26), 1.5);
+    const int tail2 = s.add("tail2", tail1, af::Vec3(-30, 0, 28), 1);
+    s.add("tail3", tail2, af::Vec3(-37, 0, 31));
+    for (const char side : {'l', 'r'}) {
+        const double y = side == 'l' ? 5 : -5;
+        const std::string sfx = std::string("_") + side;
+        int j = s.add("shoulder" + sfx, chest, af::Vec3(14, y, 22), 2.5);
+        j = s.add("elbow" + sfx, j, af::Vec3(13, y, 12), 2);
+        j = s.add("frontpaw" + sfx, j, af::Vec3(13, y, 2), 1.5);
+        s.add("fronttoe" + sfx, j, af::Vec3(16, y, 0.5));
+        j = s.add("thigh" + sfx, hips, af::Vec3(-14, y, 21), 3);
+        j = s.add("knee" + sfx, j, af::Vec3(-12, y, 11), 2);
+        j = s.add("hindpaw" + sfx, j, af::Vec3(-14, y, 2), 1.5);
+        s.add("hindtoe" + sfx, j, af::Vec3(-11, y, 0.5));
+    }
+    return s.joints;
+}
+
+// 100 joints, as a game's character has them: most are fingers, toes, the face, attachment tags
+// and a ponytail of short bones, which the grouping folds into 18 bodies (a spine of three, a
+// neck, a head, the limbs). The face, the ears and the tags carry no skin.
+std::vector<SynthJoint> detailedHumanoid() {
+    Builder s;
+    const int origin = s.add("origin", -1, af::Vec3::Zero());
+    const int pelvis = s.add("pelvis", origin, af::Vec3(0, 0, 37), 5);
+    const int spine1 = s.add("spine1", pelvis, af::Vec3(0, 0, 41), 4.5);
+    const int spine2 = s.add("spine2", spine1, af::Vec3(0, 0, 46), 4.5);
+    const int spine3 = s.add("spine3", spine2, af::Vec3(0, 0, 51), 5);
+    const int neck = s.add("neck", spine3, af::Vec3(0, 0, 58), 2);
+    const int head = s.add("head", neck, af::Vec3(0, 0, 62), 3.5);
+    for (const char* face : {"jaw", "tongue", "eye_l", "eye_r", "lid_l_up", "lid_l_dn", "lid_r_up", "lid_r_dn",
+                             "brow_l", "brow_r", "lip_up", "lip_dn", "lip_l", "lip_r", "cheek_l", "cheek_r", "nose"})
+        s.add(face, head, af::Vec3(3.5, 0, 64));
+    for (const char* ear : {"ear_l", "ear_r"}) s.add(ear, head, af::Vec3(0, 0, 63));
+    int tail = head;
+    for (int i = 1; i <= 5; ++i) tail = s.add("ponytail" + std::to_string(i), tail, af::Vec3(-3.5 - 1.5 * i, 0, 66 - 1.5 * i), 0.5);
+    for (const char* tag : {"tag_back", "tag_belt", "tag_head"}) s.add(tag, spine3, af::Vec3(-4, 0, 50));
+    for (const double y : {1.0, -1.0}) {
+        const std::string sfx = y > 0 ? "_l" : "_r";
+        const int clavicle = s.add("clavicle" + sfx, spine3, af::Vec3(0, 3 * y, 55));
+        const int upper = s.add("upperarm" + sfx, clavicle, af::Vec3(0, 8 * y, 55), 2.5);
+        const int fore = s.add("forearm" + sfx, upper, af::Vec3(0, 20 * y, 55), 2);
+        const int hand = s.add("hand" + sfx, fore, af::Vec3(0, 30 * y, 55), 1.5);
+        s.add("tag_weapon" + sfx, hand, af::Vec3(1, 31 * y, 55));
+        const char* fingers[] = {"thumb", "index", "middle", "ring", "pinky"};
+        for (int f = 0; f < 5; ++f) {
+            int bone = hand;
+            const double x = 1.2 - 0.6 * f;
+            for (int k = 1; k <= 4; ++k)  // three bones and an end nub without skin
+                bone = s.add(std::string(fingers[f]) + std::to_string(k) + sfx, bone,
+                             af::Vec3(x, (32 + 1.2 * k) * y, 55), k < 4 ? 0.3 : 0);
+        }
+        const int thigh = s.add("thigh" + sfx, pelvis, af::Vec3(0, 5.5 * y, 34), 3);
+        const int calf = s.add("calf" + sfx, thigh, af::Vec3(0, 5.5 * y, 19), 2.5);
+        const int foot = s.add("foot" + sfx, calf, af::Vec3(0, 5.5 * y, 3), 1.5);
+        for (int t = 1; t <= 5; ++t) s.add("toe" + std::to_string(t) + sfx, foot, af::Vec3(6, (5.5 + 0.5 * (t - 3)) * y, 1), 0.3);
+    }
+    return s.joints;
+}
+
+// A mod folder holding models/NAME/NAME.md5mesh.
+fs::path modWith(const std::string& name, const std::vector<SynthJoint>& joints) {
+    const fs::path mod = af::test::scratchDir() / "mod";
+    fs::create_directories(mod / "models" / name);
+    af::test::writeAll(mod / "models" / name / (name + ".md5mesh"), md5meshText(joints));
+    return mod;
+}
+
+// ---- what a generated figure must do ----
+
+struct Dropped {
+    double restTime = -1;  // -1: not at rest
+    double jointError = 0;
+    double limitViolationDeg = 0;
+};
+
+// The generated entity, checked as a modder would, then dropped by af-sim into the default world.
+Dropped checkAndDrop(const fs::path& mod, const fs::path& out, const std::string& name, std::size_t jointCount) {
+    const std::string roots = "--root " + quoted(mod) + " --root " + quoted(out);
+
+    // It loads, and af-check has nothing to say about it.
+    const ToolRun check = runTool(kCheck + " " + roots + " --entity " + name + " 2>&1");
+    EXPECT_EQ(check.status, 0) << check.out;
+    EXPECT_EQ(check.out.find("warning"), std::string::npos) << check.out;
+
+    // Every joint is contained by exactly one body.
+    const af::ResourceIndex index({mod, out});
+    const af::AFResources found = index.resolveAFEntity(name);
+    EXPECT_TRUE(found.ok()) << found.formatDiagnostics();
+    af::FigureResult built = af::buildFigure(found);
+    EXPECT_TRUE(built.ok()) << built.formatDiagnostics();
+    if (!built.ok()) return {};
+    std::size_t claims = 0;
+    for (const af::FigureBody& body : built.figure->bodies) claims += body.containedJoints.size();
+    EXPECT_EQ(built.figure->jointBody.size(), jointCount);
+    EXPECT_EQ(claims, jointCount) << "a joint claimed twice or not at all";
+    for (std::size_t j = 0; j < built.figure->jointBody.size(); ++j) EXPECT_GE(built.figure->jointBody[j], 0) << j;
+
+    const ToolRun sim = runTool(kSim + " " + roots + " --entity " + name + " --seconds 6 --json");
+    EXPECT_EQ(sim.status, 0) << sim.out << sim.err;
+    if (sim.status != 0) return {};
+    const nlohmann::json j = nlohmann::json::parse(sim.out);
+    Dropped d;
+    if (j["rest_time_s"].is_number()) d.restTime = j["rest_time_s"].get<double>();
+    d.jointError = j["max_joint_error"].get<double>();
+    d.limitViolationDeg = j["max_limit_violation_deg"].get<double>();
+    EXPECT_TRUE(j["invalid_motion"].empty()) << sim.out;
+    std::printf("%s: %zu bodies, at rest after %.2f s, max joint error %.2g units, max limit violation %.2g deg\n",
+                name.c_str(), built.figure->bodies.size(), d.restTime, d.jointError, d.limitViolationDeg);
+    return d;
+}
+
+void expectRestsSoundly(const Dropped& d) {
+    EXPECT_GE(d.restTime, 0) << "never came to rest";
+    EXPECT_LT(d.restTime, 5.0);
+    EXPECT_LT(d.jointError, 1e-3);
+    EXPECT_LT(d.limitViolationDeg, 0.5);
+}
+
+std::map<std::string, std::string> constraintTypesByBody(const fs::path& afFile) {
+    const af::AFParseResult parsed = af::loadAFFile(afFile.string());
+    EXPECT_TRUE(parsed.ok()) << parsed.diagnostics.formatAll();
+    std::map<std::string, std::string> types;
+    if (!parsed.ok()) return types;
+    for (const af::AFConstraint& c : parsed.file.decls.front().constraints) types[c.body1] = af::toString(c.type);
+    return types;
+}
+
+std::vector<std::string> bodyNames(const fs::path& afFile) {
+    const af::AFParseResult parsed = af::loadAFFile(afFile.string());
+    std::vector<std::string> names;
+    if (parsed.ok())
+        for (const af::AFBody& b : parsed.file.decls.front().bodies) names.push_back(b.name);
+    return names;
+}
+
+// ---- the tests ----
+
+TEST(AfGen, OurHumanoidGetsTheHandMadeFiguresBodiesAndJointKindsAndRests) {
+    const fs::path out = af::test::scratchDir() / "out";
+    const ToolRun run = afGen(AF_SOURCE_DIR, "models/humanoid/humanoid.md5mesh --anim models/humanoid/af_pose.md5anim "
+                                             "--name genhuman --out " + quoted(out));
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    EXPECT_EQ(run.err, "") << "the figure builds without warnings";
+    EXPECT_NE(run.out.find("figure genhuman: 16 bodies, 15 constraints, 25 joints, total mass 150.0"), std::string::npos)
+        << run.out;
+
+    // The bodies of af/humanoid.af, made by hand: clavicles, fingers, toes and the head's top are
+    // contained by their parents' bodies.
+    const std::vector<std::string> expected{"pelvis", "waist",  "chest",  "head",   "luparm", "lloarm",
+                                            "lhand",  "ruparm", "rloarm", "rhand",  "lthigh", "lshin",
+                                            "lfoot",  "rthigh", "rshin",  "rfoot"};
+    EXPECT_EQ(bodyNames(out / "af/genhuman.af"), expected);
+    const std::map<std::string, std::string> types = constraintTypesByBody(out / "af/genhuman.af");
+    for (const char* hinge : {"lloarm", "rloarm", "lshin", "rshin"}) EXPECT_EQ(types.at(hinge), "hinge") << hinge;
+    for (const char* ball : {"luparm", "ruparm", "lthigh", "rthigh", "lhand", "rhand", "lfoot", "rfoot"})
+        EXPECT_EQ(types.at(ball), "ballAndSocketJoint") << ball;
+    for (const char* spine : {"waist", "chest", "head"}) EXPECT_EQ(types.at(spine), "universalJoint") << spine;
+
+    // The def: the model names the files by the paths given, the entityDef is an AF entity.
+    const std::string def = af::test::readAll(out / "def/genhuman.def");
+    EXPECT_NE(def.find("mesh\t\t\t\"models/humanoid/humanoid.md5mesh\""), std::string::npos) << def;
+    EXPECT_NE(def.find("anim af_pose\t\"models/humanoid/af_pose.md5anim\""), std::string::npos) << def;
+    EXPECT_NE(def.find("\"spawnclass\"\t\t\t\"idAFEntity_Generic\""), std::string::npos) << def;
+    EXPECT_FALSE(fs::exists(out / "models")) << "an af_pose was given, so none is written";
+
+    expectRestsSoundly(checkAndDrop(AF_SOURCE_DIR, out, "genhuman", 25));
+}
+
+TEST(AfGen, KeepAndMergeOverrideTheGrouping) {
+    const fs::path out = af::test::scratchDir() / "out";
+    const ToolRun run = afGen(AF_SOURCE_DIR, "models/humanoid/humanoid.md5mesh --anim models/humanoid/af_pose.md5anim "
+                                             "--name kept --keep neck --merge lhand,rhand --out " + quoted(out));
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    const std::vector<std::string> names = bodyNames(out / "af/kept.af");
+    const std::set<std::string> bodies(names.begin(), names.end());
+    EXPECT_TRUE(bodies.count("neck")) << "tiny, and kept";
+    EXPECT_FALSE(bodies.count("lhand"));
+    EXPECT_FALSE(bodies.count("rhand"));
+    EXPECT_EQ(names.size(), 15u);
+    checkAndDrop(AF_SOURCE_DIR, out, "kept", 25);
+}
+
+TEST(AfGen, AChainWithASkinWritesItsBindPoseAndRests) {
+    const std::vector<SynthJoint> joints = chain();
+    const fs::path mod = modWith("rope", joints);
+    const ToolRun run = afGen(mod, "models/rope/rope.md5mesh --out gen --total-mass 20");
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    EXPECT_NE(run.out.find("total mass 20.0"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("18 vertices"), std::string::npos) << "sized from the skin: " << run.out;
+    // No --anim: the bind pose is written as the af_pose, and the def names it.
+    EXPECT_TRUE(fs::exists(mod / "gen/models/rope/af_pose.md5anim"));
+    EXPECT_NE(af::test::readAll(mod / "gen/def/rope.def").find("\"models/rope/af_pose.md5anim\""), std::string::npos);
+    // Eight links, the last one a body because it carries skin.
+    EXPECT_EQ(bodyNames(mod / "gen/af/rope.af").size(), 8u);
+    expectRestsSoundly(checkAndDrop(mod, mod / "gen", "rope", joints.size()));
+}
+
+TEST(AfGen, AQuadrupedGetsLegsOfHipsKneesAndPawsAndRests) {
+    const std::vector<SynthJoint> joints = quadruped();
+    const fs::path mod = modWith("dog", joints);
+    const ToolRun run = afGen(mod, "models/dog/dog.md5mesh --out gen");
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    const std::vector<std::string> names = bodyNames(mod / "gen/af/dog.af");
+    const std::set<std::string> bodies(names.begin(), names.end());
+    for (const char* merged : {"jaw", "eye_l", "fronttoe_l", "hindtoe_r", "tail3"})
+        EXPECT_FALSE(bodies.count(merged)) << merged << " is an end part";
+    const std::map<std::string, std::string> types = constraintTypesByBody(mod / "gen/af/dog.af");
+    EXPECT_EQ(types.at("knee_l"), "hinge");
+    EXPECT_EQ(types.at("elbow_r"), "hinge");
+    EXPECT_EQ(types.at("thigh_l"), "ballAndSocketJoint");
+    EXPECT_EQ(types.at("shoulder_r"), "ballAndSocketJoint");
+    EXPECT_EQ(types.at("chest"), "universalJoint");
+    expectRestsSoundly(checkAndDrop(mod, mod / "gen", "dog", joints.size()));
+}
+
+TEST(AfGen, AHundredJointsOfFingersFaceAndTagsFoldIntoAFewBodiesAndRest) {
+    const std::vector<SynthJoint> joints = detailedHumanoid();
+    ASSERT_EQ(joints.size(), 100u);
+    const fs::path mod = modWith("hero", joints);
+    const ToolRun run = afGen(mod, "models/hero/hero.md5mesh --out gen");
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    const std::vector<std::string> names = bodyNames(mod / "gen/af/hero.af");
+    const std::vector<std::string> expected{"pelvis",     "spine1",  "spine2",     "spine3",    "neck",   "head",
+                                            "upperarm_l", "forearm_l", "hand_l",   "thigh_l",   "calf_l", "foot_l",
+                                            "upperarm_r", "forearm_r", "hand_r",   "thigh_r",   "calf_r", "foot_r"};
+    EXPECT_EQ(std::set<std::string>(names.begin(), names.end()), std::set<std::string>(expected.begin(), expected.end()))
+        << run.out;
+    const std::map<std::string, std::string> types = constraintTypesByBody(mod / "gen/af/hero.af");
+    for (const char* hinge : {"forearm_l", "forearm_r", "calf_l", "calf_r"}) EXPECT_EQ(types.at(hinge), "hinge") << hinge;
+    expectRestsSoundly(checkAndDrop(mod, mod / "gen", "hero", joints.size()));
+}
+
+// ---- bad input: one message, exit status 2, nothing written ----
+
+void expectRefused(const fs::path& mod, const std::string& arguments, const std::string& message) {
+    const ToolRun run = afGen(mod, arguments + " --out gen");
+    EXPECT_EQ(run.status, 2) << run.out << run.err;
+    EXPECT_NE(run.err.find(message), std::string::npos) << run.err;
+    EXPECT_EQ(run.out, "");
+    EXPECT_FALSE(fs::exists(mod / "gen")) << "nothing is written";
+}
+
+TEST(AfGen, BadInputIsRefusedWithOneMessageAndNothingWritten) {
+    const fs::path mod = modWith("ok", chain());
+    expectRefused(mod, "models/missing.md5mesh", "models/missing.md5mesh");
+    af::test::writeAll(mod / "models/broken.md5mesh", "MD5Version 10\ncommandline \"\"\nnumJoints 2\nnumMeshes 0\n"
+                                                       "joints {\n\t\"origin\" -1 ( 0 0 0 ) ( 0 0 0 )\n}\n");
+    expectRefused(mod, "models/broken.md5mesh", "models/broken.md5mesh:");
+    std::vector<SynthJoint> world = chain();
+    world[3].name = "world";
+    af::test::writeAll(mod / "models/world.md5mesh", md5meshText(world));
+    expectRefused(mod, "models/world.md5mesh", "\"world\"");
+    af::test::writeAll(mod / "models/lonely.md5mesh", md5meshText({{"origin", -1, af::Vec3::Zero(), 0}}));
+    expectRefused(mod, "models/lonely.md5mesh", "origin");
+    expectRefused(mod, "models/ok/ok.md5mesh --anim models/humanoid/af_pose.md5anim", "af_pose.md5anim");
+    expectRefused(mod, "models/ok/ok.md5mesh --name 'bad name'", "bad name");
+}
+
+TEST(AfGen, ExistingFilesAreKeptUnlessForced) {
+    const fs::path mod = modWith("rope", chain());
+    ASSERT_EQ(afGen(mod, "models/rope/rope.md5mesh --out gen").status, 0);
+    const ToolRun again = afGen(mod, "models/rope/rope.md5mesh --out gen --total-mass 30");
+    EXPECT_EQ(again.status, 2);
+    EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+    EXPECT_EQ(af::test::readAll(mod / "gen/af/rope.af").find("totalMass 30"), std::string::npos);
+    ASSERT_EQ(afGen(mod, "models/rope/rope.md5mesh --out gen --total-mass 30 --force").status, 0);
+    EXPECT_NE(af::test::readAll(mod / "gen/af/rope.af").find("totalMass 30"), std::string::npos);
+}
+
+}  // namespace
