@@ -45,6 +45,7 @@ struct SynthJoint {
     int parent = -1;
     af::Vec3 position = af::Vec3::Zero();
     double radius = 0;  // > 0: mesh vertices around its bone (or around it, at an end), weighted to it
+    af::Vec3 skin = af::Vec3::Zero();  // the bone the skin is around, when not to its first child
 };
 
 std::string number(double x) {
@@ -64,9 +65,9 @@ std::string md5meshText(const std::vector<SynthJoint>& joints) {
     for (std::size_t j = 0; j < joints.size(); ++j) {
         const SynthJoint& joint = joints[j];
         if (joint.radius <= 0) continue;
-        af::Vec3 bone = af::Vec3::Zero();
+        af::Vec3 bone = joint.skin;
         for (const SynthJoint& child : joints)
-            if (&child != &joint && child.parent == static_cast<int>(j)) {
+            if (bone.isZero() && child.parent == static_cast<int>(j)) {
                 bone = child.position - joint.position;
                 break;
             }
@@ -102,8 +103,9 @@ std::string md5meshText(const std::vector<SynthJoint>& joints) {
 
 struct Builder {
     std::vector<SynthJoint> joints;
-    int add(const std::string& name, int parent, const af::Vec3& position, double radius = 0) {
-        joints.push_back({name, parent, position, radius});
+    int add(const std::string& name, int parent, const af::Vec3& position, double radius = 0,
+            const af::Vec3& skin = af::Vec3::Zero()) {
+        joints.push_back({name, parent, position, radius, skin});
         return static_cast<int>(joints.size()) - 1;
     }
 };
@@ -159,7 +161,7 @@ std::vector<SynthJoint> detailedHumanoid() {
     const int spine2 = s.add("spine2", spine1, af::Vec3(0, 0, 46), 4.5);
     const int spine3 = s.add("spine3", spine2, af::Vec3(0, 0, 51), 5);
     const int neck = s.add("neck", spine3, af::Vec3(0, 0, 58), 2);
-    const int head = s.add("head", neck, af::Vec3(0, 0, 62), 3.5);
+    const int head = s.add("head", neck, af::Vec3(0, 0, 62), 3.5, af::Vec3(0, 0, 8));
     for (const char* face : {"jaw", "tongue", "eye_l", "eye_r", "lid_l_up", "lid_l_dn", "lid_r_up", "lid_r_dn",
                              "brow_l", "brow_r", "lip_up", "lip_dn", "lip_l", "lip_r", "cheek_l", "cheek_r", "nose"})
         s.add(face, head, af::Vec3(3.5, 0, 64));
