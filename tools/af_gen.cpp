@@ -2,9 +2,10 @@
 // .def with its model decl and AF entityDef, and, without --anim, an af_pose anim of the bind pose.
 // Run from the mod folder, so that the paths given are the ones the model decl names.
 //
-// Exit status: 0 when the files are written and the figure builds (its warnings are printed),
-// 1 when the written figure does not build, 2 for bad usage or input (an unreadable mesh or anim,
-// an anim of another skeleton, a file that exists or cannot be written).
+// Exit status: 0 when the files are written (the figure's warnings, if any, are printed), 2 for
+// bad usage or input (an unreadable mesh or anim, an anim of another skeleton, a skeleton that
+// makes no figure, a file that exists or cannot be written); then nothing is written, but for the
+// files before one whose write failed.
 
 #include "gen_output.h"
 
@@ -66,17 +67,21 @@ int generate(Options& o) {
 
     const gen::Generated generated = gen::generateFigure(loaded.skin, afPose, o.gen);
     const gen::OutputRequest request{meshPath, o.anim.empty() ? std::string() : declPath(o.anim), o.out, o.force};
-    const gen::OutputFiles files = gen::writeGenerated(generated, mesh.mesh, request);
+    const gen::OutputFiles files = gen::outputFiles(o.gen.name, request);
+
+    // The figure as a user will load it, before anything is written: the text the writer makes,
+    // parsed and built on the af_pose. One that does not build is a skeleton we cannot make a
+    // figure of; its warnings, if any, are printed.
+    const AFParseResult parsed = parseAF(writeDecl(generated.decl), files.af);
+    if (!parsed.ok()) throw InputError("cannot make a figure of this skeleton:\n" + parsed.diagnostics.formatAll());
+    const FigureResult built = buildFigure(parsed.file.decls.front(), afPose, files.af);
+    if (!built.ok()) throw InputError("cannot make a figure of this skeleton:\n" + built.formatDiagnostics());
+    std::cerr << built.formatDiagnostics();
+
+    gen::writeGenerated(generated, mesh.mesh, request);
     std::cout << gen::reportText(generated, afPose);
     for (const std::string& f : {files.af, files.def, files.anim})
         if (!f.empty()) std::cout << "wrote " << (std::filesystem::path(o.out) / f).string() << '\n';
-
-    // The figure as a user will load it: the written text, parsed and built on the af_pose.
-    const AFParseResult parsed = parseAF(writeDecl(generated.decl), files.af);
-    FigureResult built = parsed.ok() ? buildFigure(parsed.file.decls.front(), afPose, files.af) : FigureResult{};
-    if (!parsed.ok()) std::cerr << parsed.diagnostics.formatAll();
-    std::cerr << built.formatDiagnostics();
-    if (!built.ok()) return 1;
     std::cout << "try: af-sim --root . --root " << o.out << " --entity " << o.gen.name << '\n';
     return 0;
 }

@@ -55,11 +55,13 @@ Real figureSize(const Skeleton& pose, const std::vector<MeshPoint>& points) {
 }
 
 int rootJoint(const Skeleton& skeleton) {
-    const int origin = skeleton.find("origin");
-    if (origin < 0) return 0;
+    // The builder's rule (src/figure/figure_builder.cpp, drivenJoint): the first child of
+    // `origin`, or of the skeleton's root when no joint has that name.
+    const int origin = std::max(skeleton.find("origin"), 0);
     for (std::size_t j = 0; j < skeleton.size(); ++j)
         if (skeleton.parents[j] == origin) return static_cast<int>(j);
-    throw std::invalid_argument("the joint \"origin\" has no child for the root body to drive (docs/figures.md §3.6)");
+    throw std::invalid_argument("the joint \"" + skeleton.names[static_cast<std::size_t>(origin)] +
+                                "\" has no child for the root body to drive (docs/figures.md §3.6)");
 }
 
 std::vector<MeshPoint> meshPoints(const std::vector<Md5SkinSection>& skin, const Skeleton& afPose) {

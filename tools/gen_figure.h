@@ -60,7 +60,8 @@ struct GenBody {
 Real figureSize(const Skeleton& afPose, const std::vector<MeshPoint>& points);
 
 // The joint that an `origin` body drives (docs/figures.md §3.6): the first child of the joint
-// named `origin`, or joint 0 when there is none.
+// named `origin`, or of joint 0 when there is none; that joint and its ancestors are the root
+// body's. Throws std::invalid_argument when it has no child.
 int rootJoint(const Skeleton& skeleton);
 
 // Groups the joints into bodies: a body for every joint that carries mesh weight or has children,

@@ -60,7 +60,7 @@ std::string defText(const std::string& name, const std::string& meshPath, const 
     return "// " + name + ".def: written by af-gen from " + meshPath + " (docs/af-gen.md).\n\n" +
            "model " + name + " {\n\tmesh\t\t\t\"" + meshPath + "\"\n\tanim af_pose\t\"" + animPath + "\"\n}\n\n" +
            "entityDef " + name + " {\n\t\"spawnclass\"\t\t\t\"idAFEntity_Generic\"\n\t\"model\"\t\t\t\t\t\"" + name +
-           "\"\n\t\"articulatedFigure\"\t\t\"" + name + "\"\n}\n";
+           "\"\n\t\"articulatedFigure\"\t\t\"" + name + "\"\n\t\"nodrop\"\t\t\t\t\"0\"\n}\n";
 }
 
 OutputFiles writeGenerated(const Generated& generated, const Md5Mesh& mesh, const OutputRequest& request) {

@@ -79,8 +79,10 @@ Vec3 boneEnd(const std::vector<GenBody>& bodies, const GenBody& body, const Skel
         const auto main = std::max_element(body.children.begin(), body.children.end(),
                                            [&](int a, int b) { return score(a) < score(b); });
         const Vec3 mainJoint = joint(pose, bodies[static_cast<std::size_t>(*main)].joint);
-        if (in.isZero() || in.dot((mainJoint - start).normalized()) >= kGoesOnCos) return mainJoint;
-        // Every child branches off (the last segment of a centipede, between its legs): the bone
+        if (body.children.size() == 1 || in.isZero() || in.dot((mainJoint - start).normalized()) >= kGoesOnCos)
+            return mainJoint;
+        // Every one of several children branches off (the last segment of a centipede, between
+        // its legs; not a thigh, whose one child is its knee however it turns): the bone
         // goes on the way it came, over the body's own joints and vertices, at least half as
         // long as the bone before it.
         Real length = 0.5 * (start - joint(pose, parentJoint)).norm();

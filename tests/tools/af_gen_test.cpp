@@ -268,6 +268,21 @@ std::vector<std::string> bodyNames(const fs::path& afFile) {
     return names;
 }
 
+// A hinge's range of our angle about `axis` (docs/figures.md §3.8: centre a3 − a1, half-width
+// a2/2), in degrees.
+std::pair<double, double> hingeRange(const af::AFConstraint& c, const af::Vec3& axis) {
+    const double centre = c.limitAngles[2] - c.limitAngles[0], half = c.limitAngles[1] / 2;
+    const af::Vec3 own(c.axis.coordinates[0], c.axis.coordinates[1], c.axis.coordinates[2]);
+    if (own.dot(axis) > 0) return {centre - half, centre + half};
+    return {-centre - half, -centre + half};  // the same range about the opposite axis
+}
+
+const af::AFConstraint* constraintOf(const af::DeclAF& decl, const std::string& body1) {
+    for (const af::AFConstraint& c : decl.constraints)
+        if (c.body1 == body1) return &c;
+    return nullptr;
+}
+
 // ---- the tests ----
 
 TEST(AfGen, OurHumanoidGetsTheHandMadeFiguresBodiesAndJointKindsAndRests) {
@@ -290,6 +305,27 @@ TEST(AfGen, OurHumanoidGetsTheHandMadeFiguresBodiesAndJointKindsAndRests) {
     for (const char* ball : {"luparm", "ruparm", "lthigh", "rthigh", "lhand", "rhand", "lfoot", "rfoot"})
         EXPECT_EQ(types.at(ball), "ballAndSocketJoint") << ball;
     for (const char* spine : {"waist", "chest", "head"}) EXPECT_EQ(types.at(spine), "universalJoint") << spine;
+
+    // Knees and elbows bend the way af/humanoid.af's do: about the same axis, their ranges on the
+    // same side of straight (the hand-made ones: 5° past straight to 145°; ours to 150°).
+    const af::AFParseResult made = af::loadAFFile(AF_SOURCE_DIR "/af/humanoid.af");
+    const af::AFParseResult generated = af::loadAFFile((out / "af/genhuman.af").string());
+    ASSERT_TRUE(made.ok() && generated.ok());
+    for (const auto& [ours, theirs] : std::map<std::string, std::string>{
+             {"lloarm", "lloarm"}, {"rloarm", "rloarm"}, {"lshin", "lshin"}, {"rshin", "rshin"}}) {
+        const af::AFConstraint* g = constraintOf(generated.file.decls.front(), ours);
+        const af::AFConstraint* m = constraintOf(made.file.decls.front(), theirs);
+        using Kind = af::AFVector::Kind;
+        ASSERT_TRUE(g && m && g->axis.kind == Kind::Coordinates && m->axis.kind == Kind::Coordinates && !m->axis.negated);
+        const auto vec = [](const af::AFVector& v) { return af::Vec3(v.coordinates[0], v.coordinates[1], v.coordinates[2]); };
+        const af::Vec3 axis = vec(m->axis).normalized();
+        EXPECT_NEAR(std::fabs(vec(g->axis).normalized().dot(axis)), 1.0, 1e-6) << ours;
+        const auto [gLo, gHi] = hingeRange(*g, axis);
+        const auto [mLo, mHi] = hingeRange(*m, axis);
+        std::printf("%s: hinge range %.1f..%.1f deg, hand-made %.1f..%.1f\n", ours.c_str(), gLo, gHi, mLo, mHi);
+        EXPECT_NEAR(gLo, mLo, 10) << ours;
+        EXPECT_NEAR(gHi, mHi, 10) << ours;
+    }
 
     // The def: the model names the files by the paths given, the entityDef is an AF entity.
     const std::string def = af::test::readAll(out / "def/genhuman.def");
@@ -327,6 +363,18 @@ TEST(AfGen, AChainWithASkinWritesItsBindPoseAndRests) {
     EXPECT_NE(af::test::readAll(mod / "gen/def/rope.def").find("\"models/rope/af_pose.md5anim\""), std::string::npos);
     // Eight links, the last one a body because it carries skin.
     EXPECT_EQ(bodyNames(mod / "gen/af/rope.af").size(), 8u);
+    expectRestsSoundly(checkAndDrop(mod, mod / "gen", "rope", joints.size()));
+}
+
+// Without an `origin` joint the root body drives the skeleton root's first child, as the
+// builder binds it (docs/figures.md §3.6), and contains the root.
+TEST(AfGen, WithoutAnOriginJointTheRootBodyDrivesTheRootsFirstChild) {
+    std::vector<SynthJoint> joints = chain();
+    joints[0].name = "base";
+    const fs::path mod = modWith("rope", joints);
+    const ToolRun run = afGen(mod, "models/rope/rope.md5mesh --out gen");
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    EXPECT_EQ(bodyNames(mod / "gen/af/rope.af").front(), "link1");
     expectRestsSoundly(checkAndDrop(mod, mod / "gen", "rope", joints.size()));
 }
 
