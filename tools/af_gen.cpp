@@ -65,7 +65,12 @@ int generate(Options& o) {
         afPose = skeletonFromMd5Anim(anim.anim, 0);
     }
 
-    const gen::Generated generated = gen::generateFigure(loaded.skin, afPose, o.gen);
+    gen::Generated generated;
+    try {
+        generated = gen::generateFigure(loaded.skin, afPose, o.gen);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(meshPath + ": " + e.what());
+    }
     const gen::OutputRequest request{meshPath, o.anim.empty() ? std::string() : declPath(o.anim), o.out, o.force};
     const gen::OutputFiles files = gen::outputFiles(o.gen.name, request);
 
@@ -111,7 +116,10 @@ int main(int argc, char** argv) {
     try {
         return generate(o);
     } catch (const std::exception& e) {
-        std::cerr << "af-gen: " << e.what() << '\n';
+        // Diagnostics end in a newline of their own.
+        std::string message = e.what();
+        while (!message.empty() && message.back() == '\n') message.pop_back();
+        std::cerr << "af-gen: " << message << '\n';
         return 2;
     }
 }

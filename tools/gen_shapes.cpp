@@ -29,6 +29,12 @@ constexpr Real kGoesOnShare = 0.4;
 // Cross-sections rounder than this (larger over smaller side) are cylinders.
 constexpr Real kCylinderAspect = 1.6;
 constexpr int kCylinderSides = 8;
+// A trunk body sized from its bones: half as wide as 0.7 of the trunk's half-width (its limbs'
+// spread), its end (a head) 0.5, front to back 0.6 of that: our humanoid's hand-made pelvis,
+// waist, chest and head are 12 to 16 wide and 6 to 9 deep for shoulders 16 apart.
+constexpr Real kTrunkShare = 0.7;
+constexpr Real kTrunkEndShare = 0.5;
+constexpr Real kTrunkDepth = 0.6;
 // Our humanoid: 150 mass units for 70 units of height (af/humanoid.af).
 constexpr Real kHumanoidMass = 150;
 constexpr Real kHumanoidSize = 69;  // its toes (z 1) to its head's top (z 70)
@@ -112,8 +118,9 @@ Vec3 boneEnd(const std::vector<GenBody>& bodies, const GenBody& body, const Skel
     return length >= kGoesOnShare * (end - start).norm() ? Vec3(start + length * d) : end;
 }
 
+// `across`: a trunk body's half-width when it is sized from its bone (0: from its bone's length).
 GenShape shapeOf(const std::vector<GenBody>& bodies, const GenBody& body, const Skeleton& pose,
-                 const std::vector<Vec3>& vertices, Real size) {
+                 const std::vector<Vec3>& vertices, Real size, Real across) {
     const Vec3 start = joint(pose, body.joint);
     Vec3 bone = body.boneEnd - start;
     if (bone.norm() < 1e-6 * size) {
@@ -145,6 +152,10 @@ GenShape shapeOf(const std::vector<GenBody>& bodies, const GenBody& body, const 
             if (!body.children.empty()) local.z() = std::min(local.z(), length);
             grow(local);
         }
+    } else if (across > radius) {
+        // Across the figure (the frame's y) as wide as the trunk, front to back shallower.
+        grow(Vec3(-kTrunkDepth * across, -across, 0));
+        grow(Vec3(kTrunkDepth * across, across, length));
     } else {
         grow(Vec3(-radius, -radius, 0));
         grow(Vec3(radius, radius, length));
@@ -206,10 +217,31 @@ void sizeBodies(std::vector<GenBody>& bodies, const Skeleton& pose, const std::v
     for (const MeshPoint& p : points)
         vertices[static_cast<std::size_t>(bodyOf[static_cast<std::size_t>(p.joint)])].push_back(p.position);
 
+    for (std::size_t b = 0; b < bodies.size(); ++b) bodies[b].boneEnd = boneEnd(bodies, bodies[b], pose, vertices[b]);
+
+    // The trunk: the root body and, on from it, each trunk body's main child (a pelvis, waist,
+    // chest and head; a chain's every link). Its half-width is the farthest its limbs start
+    // from its bones (our humanoid's shoulders, 8 units out).
+    std::vector<bool> trunk(bodies.size(), false);
+    Real trunkHalfWidth = 0;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const GenBody& body = bodies[b];
+        trunk[b] = body.parent < 0 || (trunk[static_cast<std::size_t>(body.parent)] &&
+                                       (joint(pose, body.joint) - bodies[static_cast<std::size_t>(body.parent)].boneEnd)
+                                               .norm() < 1e-9);
+        const Vec3 bone = body.boneEnd - joint(pose, body.joint);
+        if (!trunk[b] || bone.norm() < 1e-9) continue;
+        const Vec3 d = bone.normalized();
+        for (int c : body.children) {
+            const Vec3 out = joint(pose, bodies[static_cast<std::size_t>(c)].joint) - joint(pose, body.joint);
+            trunkHalfWidth = std::max(trunkHalfWidth, (out - out.dot(d) * d).norm());
+        }
+    }
+
     Real volume = 0;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-        bodies[b].boneEnd = boneEnd(bodies, bodies[b], pose, vertices[b]);
-        bodies[b].shape = shapeOf(bodies, bodies[b], pose, vertices[b], size);
+        const Real across = !trunk[b] ? 0 : (bodies[b].children.empty() ? kTrunkEndShare : kTrunkShare) * trunkHalfWidth;
+        bodies[b].shape = shapeOf(bodies, bodies[b], pose, vertices[b], size, across);
         volume += volumeOf(bodies[b].shape);
     }
     // One density for the whole figure, then each body (parents come first) kept near its parent.

@@ -206,7 +206,15 @@ struct Dropped {
     double restTime = -1;  // -1: not at rest
     double jointError = 0;
     double limitViolationDeg = 0;
+    std::map<std::string, double> masses;  // per body, as built
 };
+
+// Each body's mass in the built figure of an AF entity.
+std::map<std::string, double> massesOf(const af::Figure& figure) {
+    std::map<std::string, double> masses;
+    for (const af::FigureBody& body : figure.bodies) masses[body.name] = body.mass;
+    return masses;
+}
 
 // The generated entity, checked as a modder would, then dropped by af-sim into the default world.
 Dropped checkAndDrop(const fs::path& mod, const fs::path& out, const std::string& name, std::size_t jointCount) {
@@ -235,6 +243,7 @@ Dropped checkAndDrop(const fs::path& mod, const fs::path& out, const std::string
     if (sim.status != 0) return {};
     const nlohmann::json j = nlohmann::json::parse(sim.out);
     Dropped d;
+    d.masses = massesOf(*built.figure);
     if (j["rest_time_s"].is_number()) d.restTime = j["rest_time_s"].get<double>();
     d.jointError = j["max_joint_error"].get<double>();
     d.limitViolationDeg = j["max_limit_violation_deg"].get<double>();
@@ -334,7 +343,20 @@ TEST(AfGen, OurHumanoidGetsTheHandMadeFiguresBodiesAndJointKindsAndRests) {
     EXPECT_NE(def.find("\"spawnclass\"\t\t\t\"idAFEntity_Generic\""), std::string::npos) << def;
     EXPECT_FALSE(fs::exists(out / "models")) << "an af_pose was given, so none is written";
 
-    expectRestsSoundly(checkAndDrop(AF_SOURCE_DIR, out, "genhuman", 25));
+    const Dropped dropped = checkAndDrop(AF_SOURCE_DIR, out, "genhuman", 25);
+    expectRestsSoundly(dropped);
+
+    // Its mass is shared out as the hand-made figure's is: the trunk and head carry about half
+    // (85 of 150 there), a thigh more than a forearm.
+    af::FigureResult handMade = af::buildFigure(af::ResourceIndex({AF_SOURCE_DIR}).resolveAFEntity("ragdoll_humanoid"));
+    ASSERT_TRUE(handMade.ok()) << handMade.formatDiagnostics();
+    const std::map<std::string, double> theirs = massesOf(*handMade.figure);
+    const auto trunk = [](const std::map<std::string, double>& m) {
+        return m.at("pelvis") + m.at("waist") + m.at("chest") + m.at("head");
+    };
+    std::printf("trunk and head: %.1f of 150 (hand-made %.1f)\n", trunk(dropped.masses), trunk(theirs));
+    EXPECT_NEAR(trunk(dropped.masses), trunk(theirs), 15);
+    EXPECT_GT(dropped.masses.at("lthigh"), 2 * dropped.masses.at("lloarm"));
 }
 
 TEST(AfGen, KeepAndMergeOverrideTheGrouping) {
