@@ -6,6 +6,7 @@
 
 #include "af/figure/figure.h"
 #include "af/text/af_parser.h"
+#include "af/text/md5_skin.h"
 #include "af/text/resource_index.h"
 
 #include "tool_run.h"
@@ -433,6 +434,26 @@ TEST(AfGen, AHundredJointsOfFingersFaceAndTagsFoldIntoAFewBodiesAndRest) {
     const std::map<std::string, std::string> types = constraintTypesByBody(mod / "gen/af/hero.af");
     for (const char* hinge : {"forearm_l", "forearm_r", "calf_l", "calf_r"}) EXPECT_EQ(types.at(hinge), "hinge") << hinge;
     expectRestsSoundly(checkAndDrop(mod, mod / "gen", "hero", joints.size()));
+}
+
+// The skin af-gen sizes bodies from: the same parser as the skeleton keeps every vertex's weights.
+TEST(AfGen, TheMd5ParserKeepsTheSkinWhenAsked) {
+    const std::vector<SynthJoint> joints = chain();
+    const std::string text = md5meshText(joints);
+    const af::Md5MeshWithSkin withSkin = af::parseMd5MeshWithSkin(text, "rope.md5mesh");
+    ASSERT_TRUE(withSkin.parsed.ok()) << withSkin.parsed.diagnostics.formatAll();
+    EXPECT_EQ(withSkin.parsed.mesh.joints.size(), af::parseMd5Mesh(text, "rope.md5mesh").mesh.joints.size());
+    ASSERT_EQ(withSkin.skin.size(), 1u);
+    const af::Md5SkinSection& section = withSkin.skin.front();
+    ASSERT_EQ(section.vertices.size(), 8u * 18u);  // 18 a link
+    ASSERT_EQ(section.weights.size(), section.vertices.size());
+    // The eleventh vertex of link3 (joint 3) sits 1.5 units off its bone, weighted wholly to it.
+    const af::Md5Vertex& vertex = section.vertices[2 * 18 + 10];
+    EXPECT_EQ(vertex.weightCount, 1);
+    const af::Md5Weight& weight = section.weights[static_cast<std::size_t>(vertex.firstWeight)];
+    EXPECT_EQ(weight.joint, 3);
+    EXPECT_EQ(weight.bias, 1.0);
+    EXPECT_NEAR(std::hypot(weight.position[1], weight.position[2]), 1.5, 1e-5);
 }
 
 // ---- bad input: one message, exit status 2, nothing written ----
