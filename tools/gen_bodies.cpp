@@ -91,6 +91,12 @@ std::vector<GenBody> groupJoints(const Skeleton& pose, const std::vector<MeshPoi
     for (const std::string& name : pose.names)
         if (equalsIgnoreCase(name, "world"))
             throw std::invalid_argument("a joint is named \"world\", which no body may be called (docs/formats.md §1.6)");
+    for (const std::vector<std::string>* list : {&options.keep, &options.merge})
+        for (const std::string& name : *list) {
+            if (pose.find(name) < 0) throw std::invalid_argument("--keep/--merge: no joint is named \"" + name + "\"");
+            if (listed(options.keep, name) && listed(options.merge, name))
+                throw std::invalid_argument("the joint \"" + name + "\" is both kept and merged");
+        }
     const int root = rootJoint(pose);
     std::vector<int> weighted(n, 0);
     for (const MeshPoint& p : points) ++weighted[static_cast<std::size_t>(p.joint)];

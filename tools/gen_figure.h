@@ -1,8 +1,9 @@
 #pragma once
 // af-gen: an articulated figure made from an md5mesh skeleton and its mesh (issue 31,
-// docs/af-gen.md). Three steps, one file each:
-//   gen_bodies.cpp       joints grouped into bodies; each body's shape sized from the vertices
-//                        weighted mostly to its joints, or from its bone when it has none;
+// docs/af-gen.md). Four steps, one file each:
+//   gen_bodies.cpp       joints grouped into bodies;
+//   gen_shapes.cpp       each body's shape sized from the vertices weighted mostly to its
+//                        joints, or from its bone when it has none, and its mass;
 //   gen_constraints.cpp  a constraint per body, its kind from the bone's name and place in the
 //                        tree, its limits built from the af_pose;
 //   gen_figure.cpp       the .af decl those make, through the same data the parser produces.
@@ -67,7 +68,8 @@ int rootJoint(const Skeleton& skeleton);
 // Groups the joints into bodies: a body for every joint that carries mesh weight or has children,
 // unless it is a tiny or end part (docs/af-gen.md, "Bodies"); every other joint is contained by
 // its nearest ancestor's body. Body 0 is the root body; the others follow in skeleton order.
-// Every joint is contained by exactly one body.
+// Every joint is contained by exactly one body. Throws std::invalid_argument for a --keep or
+// --merge name that is no joint, or a joint named in both.
 std::vector<GenBody> groupJoints(const Skeleton& afPose, const std::vector<MeshPoint>& points,
                                  const GenOptions& options);
 

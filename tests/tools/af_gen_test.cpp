@@ -221,10 +221,12 @@ std::map<std::string, double> massesOf(const af::Figure& figure) {
 Dropped checkAndDrop(const fs::path& mod, const fs::path& out, const std::string& name, std::size_t jointCount) {
     const std::string roots = "--root " + quoted(mod) + " --root " + quoted(out);
 
-    // It loads, and af-check has nothing to say about it.
-    const ToolRun check = runTool(kCheck + " " + roots + " --entity " + name + " 2>&1");
-    EXPECT_EQ(check.status, 0) << check.out;
-    EXPECT_EQ(check.out.find("warning"), std::string::npos) << check.out;
+    // It loads, by its figure's name and by its entityDef's, and af-check has nothing to say.
+    for (const char* form : {" --figure ", " --entity "}) {
+        const ToolRun check = runTool(kCheck + " " + roots + form + name + " 2>&1");
+        EXPECT_EQ(check.status, 0) << check.out;
+        EXPECT_EQ(check.out.find("warning"), std::string::npos) << check.out;
+    }
 
     // Every joint is contained by exactly one body.
     const af::ResourceIndex index({mod, out});
@@ -254,11 +256,14 @@ Dropped checkAndDrop(const fs::path& mod, const fs::path& out, const std::string
     return d;
 }
 
+// The issue asks for rest within 5 s and joint error under 1e-3 units; the figures hold their
+// joints to about 1e-10 units and their limits to about 5e-9° (af-sim's largest over the run), so
+// those are held to 1e-8 units and 1e-7°.
 void expectRestsSoundly(const Dropped& d) {
     EXPECT_GE(d.restTime, 0) << "never came to rest";
     EXPECT_LT(d.restTime, 5.0);
-    EXPECT_LT(d.jointError, 1e-3);
-    EXPECT_LT(d.limitViolationDeg, 0.5);
+    EXPECT_LT(d.jointError, 1e-8);
+    EXPECT_LT(d.limitViolationDeg, 1e-7);
 }
 
 std::map<std::string, std::string> constraintTypesByBody(const fs::path& afFile) {
@@ -371,7 +376,7 @@ TEST(AfGen, KeepAndMergeOverrideTheGrouping) {
     EXPECT_FALSE(bodies.count("lhand"));
     EXPECT_FALSE(bodies.count("rhand"));
     EXPECT_EQ(names.size(), 15u);
-    checkAndDrop(AF_SOURCE_DIR, out, "kept", 25);
+    expectRestsSoundly(checkAndDrop(AF_SOURCE_DIR, out, "kept", 25));
 }
 
 TEST(AfGen, AChainWithASkinWritesItsBindPoseAndRests) {
@@ -480,6 +485,8 @@ TEST(AfGen, BadInputIsRefusedWithOneMessageAndNothingWritten) {
     expectRefused(mod, "models/lonely.md5mesh", "origin");
     expectRefused(mod, "models/ok/ok.md5mesh --anim models/humanoid/af_pose.md5anim", "af_pose.md5anim");
     expectRefused(mod, "models/ok/ok.md5mesh --name 'bad name'", "bad name");
+    expectRefused(mod, "models/ok/ok.md5mesh --keep link3,linkx", "\"linkx\"");
+    expectRefused(mod, "models/ok/ok.md5mesh --keep link3 --merge link3", "both kept and merged");
 }
 
 TEST(AfGen, ExistingFilesAreKeptUnlessForced) {
