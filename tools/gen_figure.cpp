@@ -17,7 +17,8 @@ AFVector literal(const Vec3& v) { return AFVector::literal(toFloat(v.x()), toFlo
 
 // A containedJoints list (docs/formats.md §1.6) naming each of the body's joints once: `*name`
 // where the joints that form expands to (the run after it in skeleton order whose parents do not
-// come before it) are all the body's, the bare name for the others.
+// come before it, as Doom reads it: not always the whole subtree) are all the body's, the bare
+// name for the others.
 std::string containedJoints(const GenBody& body, const Skeleton& pose, const std::vector<int>& bodyOf, int self) {
     const std::size_t n = pose.size();
     std::string list;

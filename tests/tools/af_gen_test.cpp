@@ -394,6 +394,29 @@ TEST(AfGen, AChainWithASkinWritesItsBindPoseAndRests) {
     expectRestsSoundly(checkAndDrop(mod, mod / "gen", "rope", joints.size()));
 }
 
+// A skeleton whose subtrees are not runs in joint order (a leg comes between the hand's end nub
+// and its long digit, a body of its own). `*hand` means the run "hand, nub" (docs/formats.md
+// §1.6, as Doom reads it), not the hand's whole subtree: written for the whole subtree, it would
+// leave joints unclaimed; the digit keeps its own.
+TEST(AfGen, SubtreesOutOfJointOrderAreContainedOnce) {
+    Builder s;
+    const int origin = s.add("origin", -1, af::Vec3::Zero());
+    const int body = s.add("body", origin, af::Vec3(0, 0, 30), 3);
+    const int arm = s.add("arm", body, af::Vec3(0, 0, 40), 1.5);
+    const int hand = s.add("hand", arm, af::Vec3(0, 10, 40), 1);
+    s.add("nub", hand, af::Vec3(0, 11, 41));
+    const int leg = s.add("leg", arm, af::Vec3(0, -10, 40), 1.5);
+    const int digit = s.add("digit", hand, af::Vec3(0, 20, 40), 1);
+    s.add("tip", digit, af::Vec3(0, 28, 40), 0.5);
+    s.add("foot", leg, af::Vec3(0, -20, 40), 1);
+    const fs::path mod = modWith("odd", s.joints);
+    const ToolRun run = afGen(mod, "models/odd/odd.md5mesh --out gen");
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    const std::vector<std::string> names = bodyNames(mod / "gen/af/odd.af");
+    EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).count("digit"), 1u) << run.out;
+    expectRestsSoundly(checkAndDrop(mod, mod / "gen", "odd", s.joints.size()));
+}
+
 // Without an `origin` joint the root body drives the skeleton root's first child, as the
 // builder binds it (docs/figures.md §3.6), and contains the root.
 TEST(AfGen, WithoutAnOriginJointTheRootBodyDrivesTheRootsFirstChild) {
