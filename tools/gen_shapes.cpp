@@ -29,15 +29,17 @@ constexpr Real kGoesOnShare = 0.4;
 // Cross-sections rounder than this (larger over smaller side) are cylinders.
 constexpr Real kCylinderAspect = 1.6;
 constexpr int kCylinderSides = 8;
-// A trunk body sized from its bones: half as wide as 0.7 of the trunk's half-width (its limbs'
-// spread), its end (a head) 0.5, front to back 0.6 of that: our humanoid's hand-made pelvis,
-// waist, chest and head are 12 to 16 wide and 6 to 9 deep for shoulders 16 apart.
+// A trunk body sized from its bones: its half-width 0.7 of the trunk's (how far its limbs start
+// from it), 0.5 at its end (a head), and 0.6 of that front to back. Our humanoid's hand-made
+// pelvis, waist and chest are 12 to 16 wide and 8 to 9 deep, its head 8 by 6.5, for shoulders
+// 16 apart.
 constexpr Real kTrunkShare = 0.7;
 constexpr Real kTrunkEndShare = 0.5;
 constexpr Real kTrunkDepth = 0.6;
-// Our humanoid: 150 mass units for 70 units of height (af/humanoid.af).
+// Our humanoid (af/humanoid.af): 150 mass units for a figureSize of 69, its toes (z 1) to the
+// top of its head (z 70).
 constexpr Real kHumanoidMass = 150;
-constexpr Real kHumanoidSize = 69;  // its toes (z 1) to its head's top (z 70)
+constexpr Real kHumanoidSize = 69;
 
 const Vec3 kForward = Vec3::UnitX();  // docs/conventions.md §0.2
 const Vec3 kUp = Vec3::UnitZ();
@@ -76,6 +78,8 @@ Vec3 boneEnd(const std::vector<GenBody>& bodies, const GenBody& body, const Skel
         Vec3 in = parentJoint >= 0 ? Vec3(start - joint(pose, parentJoint)) : Vec3(Vec3::Zero());
         if (body.parent < 0 || in.norm() < 1e-9) in = Vec3::Zero();
         else in.normalize();
+        // How straight on a child goes, in tenths (so that near ties fall to the larger
+        // subtree), then how much of the skeleton it carries.
         const auto score = [&](int child) {
             const int j = bodies[static_cast<std::size_t>(child)].joint;
             const Vec3 out = joint(pose, j) - start;
