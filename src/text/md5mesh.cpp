@@ -1,7 +1,9 @@
-// `.md5mesh` files (docs/formats.md §2.1): the bind-pose skeleton is kept, the mesh blocks are
-// read only to prove the file well-formed.
+// `.md5mesh` files (docs/formats.md §2.1): the bind-pose skeleton is kept; the mesh blocks are
+// read to prove the file well-formed, and their vertices and weights kept only when asked for
+// (md5_skin.h).
 
 #include "af/text/md5.h"
+#include "af/text/md5_skin.h"
 #include "af/text/strings.h"
 #include "md5_common.h"
 
@@ -19,7 +21,9 @@ std::string ordinalOf(int i, int count, std::string_view countName) {
 
 class Md5MeshParser {
 public:
-    Md5MeshParser(std::string_view text, Diagnostics& diagnostics) : in_(text, diagnostics) {}
+    // `skin`, when given, receives every block's vertices and weights.
+    Md5MeshParser(std::string_view text, Diagnostics& diagnostics, std::vector<Md5SkinSection>* skin)
+        : in_(text, diagnostics), skin_(skin) {}
 
     void parse(Md5Mesh& mesh) {
         mesh.commandLine = readHeader(in_);
@@ -71,6 +75,7 @@ private:
 
     Md5MeshSection parseMeshBlock(int jointCount) {
         Md5MeshSection section;
+        Md5SkinSection* skin = skin_ ? &skin_->emplace_back() : nullptr;
         in_.expectPunctuation("{", "after mesh");
         if (in_.peek().type == TokenType::Name && in_.peek().text == "name") {
             in_.next();
@@ -94,6 +99,7 @@ private:
             if (count <= 0)
                 failAt(in_, where, "expected a weight count greater than 0, found '" + std::to_string(count) + "'");
             weightsNeeded = std::max(weightsNeeded, first + count);
+            if (skin) skin->vertices.push_back({first, count});
         }
 
         section.triangleCount = readCount(in_, "numtris", 0);
@@ -125,14 +131,16 @@ private:
             if (joint < 0 || joint >= jointCount)
                 failAt(in_, where, "expected a joint index from 0 to " + std::to_string(jointCount - 1) + ", found '" +
                                        std::to_string(joint) + "'");
-            in_.readFloat("the weight bias");
-            readTuple3(in_, "the weight position");
+            const Real bias = in_.readFloat("the weight bias");
+            const Real3 position = readTuple3(in_, "the weight position");
+            if (skin) skin->weights.push_back({joint, bias, position});
         }
         in_.expectPunctuation("}", "after the " + std::to_string(section.weightCount) + " weights (numweights)");
         return section;
     }
 
     TokenReader in_;
+    std::vector<Md5SkinSection>* skin_;
 };
 
 }  // namespace
@@ -145,9 +153,19 @@ int Md5Mesh::findJoint(std::string_view name) const {
 
 Md5MeshParseResult parseMd5Mesh(std::string_view text, std::string fileName) {
     Md5MeshParseResult result{{}, Diagnostics(std::move(fileName))};
-    Md5MeshParser parser(text, result.diagnostics);
+    Md5MeshParser parser(text, result.diagnostics, nullptr);
     try {
         parser.parse(result.mesh);
+    } catch (const ParseAbort&) {
+    }
+    return result;
+}
+
+Md5MeshWithSkin parseMd5MeshWithSkin(std::string_view text, std::string fileName) {
+    Md5MeshWithSkin result{{{}, Diagnostics(std::move(fileName))}, {}};
+    Md5MeshParser parser(text, result.parsed.diagnostics, &result.skin);
+    try {
+        parser.parse(result.parsed.mesh);
     } catch (const ParseAbort&) {
     }
     return result;
@@ -158,6 +176,11 @@ Md5MeshParseResult loadMd5MeshFile(const std::string& path) {
     Md5MeshParseResult result{{}, Diagnostics(path)};
     result.diagnostics.error({}, "cannot open the file for reading");
     return result;
+}
+
+Md5MeshWithSkin loadMd5MeshWithSkin(const std::string& path) {
+    if (std::optional<std::string> text = readWholeFile(path)) return parseMd5MeshWithSkin(*text, path);
+    return {loadMd5MeshFile(path), {}};
 }
 
 }  // namespace af
