@@ -27,11 +27,6 @@ constexpr std::array kEndPartNames{"finger", "thumb", "index", "pinky", "toe", "
 // Parts that keep a body even when short (a hand with short finger bones).
 constexpr std::array kMainPartNames{"hand", "foot", "head", "paw", "wrist", "ankle"};
 
-bool nameHas(const std::string& lowerName, const auto& parts) {
-    return std::any_of(parts.begin(), parts.end(),
-                       [&](const char* part) { return lowerName.find(part) != std::string::npos; });
-}
-
 bool listed(const std::vector<std::string>& names, const std::string& joint) {
     return std::any_of(names.begin(), names.end(), [&](const std::string& n) { return equalsIgnoreCase(n, joint); });
 }

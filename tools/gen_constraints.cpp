@@ -43,13 +43,6 @@ constexpr Real kContinuationConeDeg = 60;
 // A shoulder's cone leans forward and down, a hip's forward: the way arms and legs swing most.
 constexpr Real kConeLeanDeg = 30;
 
-const Vec3 kForward = Vec3::UnitX();  // docs/conventions.md §0.2
-const Vec3 kUp = Vec3::UnitZ();
-
-bool nameHas(const std::string& lowerName, const auto& parts) {
-    return std::any_of(parts.begin(), parts.end(),
-                       [&](const char* part) { return lowerName.find(part) != std::string::npos; });
-}
 
 Real radians(Real degrees) { return degrees * std::acos(Real(-1)) / 180; }
 Real degrees(Real radians) { return radians * 180 / std::acos(Real(-1)); }
@@ -66,12 +59,6 @@ Vec3 across(const Vec3& v, const Vec3& d, const Vec3& fallback) {
 Vec3 lean(const Vec3& d, const Vec3& toward, Real angleDeg) {
     const Vec3 t = across(toward, d, kUp);
     return (std::cos(radians(angleDeg)) * d + std::sin(radians(angleDeg)) * t).normalized();
-}
-
-AFVector literal(const Vec3& v) {
-    // Spelled at float precision by the writer; a tiny component is kept as the zero it means.
-    const auto clean = [](Real x) { return std::fabs(x) < 1e-9 ? Real(0) : Real(static_cast<float>(x)); };
-    return AFVector::literal(clean(v.x()), clean(v.y()), clean(v.z()));
 }
 
 AFVector jointVector(const std::string& name) {

@@ -13,7 +13,11 @@ namespace {
 
 Real toFloat(Real x) { return static_cast<float>(std::fabs(x) < 1e-6 ? 0 : x); }
 
+}  // namespace
+
 AFVector literal(const Vec3& v) { return AFVector::literal(toFloat(v.x()), toFloat(v.y()), toFloat(v.z())); }
+
+namespace {
 
 // A containedJoints list (docs/formats.md §1.6) naming each of the body's joints once: `*name`
 // where the joints that form expands to (the run after it in skeleton order whose parents do not

@@ -14,10 +14,25 @@
 #include "af/text/decl_af.h"
 #include "af/text/md5_skin.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
 namespace af::gen {
+
+// The af_pose's forward and up (docs/conventions.md §0.2).
+inline const Vec3 kForward = Vec3::UnitX();
+inline const Vec3 kUp = Vec3::UnitZ();
+
+// `v` as the .af text spells it: at float precision (the writer's), a component below 1e-6 as
+// the zero it means.
+AFVector literal(const Vec3& v);
+
+// Whether a lower-case bone name contains any of `parts` (C strings): "l_thigh" has "thigh".
+bool nameHas(const std::string& lowerName, const auto& parts) {
+    return std::any_of(parts.begin(), parts.end(),
+                       [&](const char* part) { return lowerName.find(part) != std::string::npos; });
+}
 
 struct GenOptions {
     std::string name;                // the decl, model and entityDef name

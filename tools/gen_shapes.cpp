@@ -41,8 +41,6 @@ constexpr Real kTrunkDepth = 0.6;
 constexpr Real kHumanoidMass = 150;
 constexpr Real kHumanoidSize = 69;
 
-const Vec3 kForward = Vec3::UnitX();  // docs/conventions.md §0.2
-const Vec3 kUp = Vec3::UnitZ();
 
 Vec3 joint(const Skeleton& pose, int j) { return pose.joints[static_cast<std::size_t>(j)].position; }
 

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <numbers>
 
 namespace benchscene {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kGolden = 2.399963229728653;  // π(3 − √5)
 
 const std::array<BoxBody, kBodiesPerRagdoll> kBodies = {{
@@ -36,23 +36,23 @@ const Vec3 kShoulderConeL = Vec3(-1, 4, -1) / std::sqrt(18.0);
 const std::array<JointDef, kJointsPerRagdoll> kJoints = {{
     {"lower_spine", JointKind::Fixed, 0, 1, {0, 0, 1.00}, kZero, kZero, 0, 0, 0, 0},
     {"upper_spine", JointKind::Fixed, 1, 2, {0, 0, 1.22}, kZero, kZero, 0, 0, 0, 0},
-    {"neck", JointKind::ConeTwist, 2, 3, {0, 0, 1.50}, {0, 0, 1}, {0, 0, 1}, 0, 0.25 * kPi, -0.25 * kPi, 0.25 * kPi},
-    {"r_shoulder", JointKind::ConeTwist, 2, 4, {0.205, 0, 1.37}, kShoulderConeR, {1, 0, 0}, 0, 0.5 * kPi,
-     -0.25 * kPi, 0.25 * kPi},
-    {"r_elbow", JointKind::Hinge, 4, 5, {0.505, 0, 1.37}, {0, 0, 1}, kZero, 0, 0.6 * kPi, 0, 0},
-    {"r_wrist", JointKind::Hinge, 5, 6, {0.755, 0, 1.37}, {0, 1, 0}, kZero, -0.1 * kPi, 0.2 * kPi, 0, 0},
-    {"l_shoulder", JointKind::ConeTwist, 2, 7, {-0.205, 0, 1.37}, kShoulderConeL, {-1, 0, 0}, 0, 0.5 * kPi,
-     -0.25 * kPi, 0.25 * kPi},
-    {"l_elbow", JointKind::Hinge, 7, 8, {-0.505, 0, 1.37}, {0, 0, -1}, kZero, 0, 0.6 * kPi, 0, 0},
-    {"l_wrist", JointKind::Hinge, 8, 9, {-0.755, 0, 1.37}, {0, -1, 0}, kZero, -0.1 * kPi, 0.2 * kPi, 0, 0},
-    {"r_hip", JointKind::Universal, 0, 10, {0.14, 0, 0.86}, {0, -1, 0}, {1, 0, 0}, -0.1 * kPi, 0.3 * kPi,
-     -0.15 * kPi, 0.75 * kPi},
-    {"r_knee", JointKind::Hinge, 10, 11, {0.14, 0, 0.48}, {-1, 0, 0}, kZero, 0, 0.75 * kPi, 0, 0},
-    {"r_ankle", JointKind::Hinge, 11, 12, {0.14, 0, 0.08}, {1, 0, 0}, kZero, -0.1 * kPi, 0.05 * kPi, 0, 0},
-    {"l_hip", JointKind::Universal, 0, 13, {-0.14, 0, 0.86}, {0, 1, 0}, {1, 0, 0}, -0.1 * kPi, 0.3 * kPi,
-     -0.15 * kPi, 0.75 * kPi},
-    {"l_knee", JointKind::Hinge, 13, 14, {-0.14, 0, 0.48}, {-1, 0, 0}, kZero, 0, 0.75 * kPi, 0, 0},
-    {"l_ankle", JointKind::Hinge, 14, 15, {-0.14, 0, 0.08}, {1, 0, 0}, kZero, -0.1 * kPi, 0.05 * kPi, 0, 0},
+    {"neck", JointKind::ConeTwist, 2, 3, {0, 0, 1.50}, {0, 0, 1}, {0, 0, 1}, 0, 0.25 * std::numbers::pi, -0.25 * std::numbers::pi, 0.25 * std::numbers::pi},
+    {"r_shoulder", JointKind::ConeTwist, 2, 4, {0.205, 0, 1.37}, kShoulderConeR, {1, 0, 0}, 0, 0.5 * std::numbers::pi,
+     -0.25 * std::numbers::pi, 0.25 * std::numbers::pi},
+    {"r_elbow", JointKind::Hinge, 4, 5, {0.505, 0, 1.37}, {0, 0, 1}, kZero, 0, 0.6 * std::numbers::pi, 0, 0},
+    {"r_wrist", JointKind::Hinge, 5, 6, {0.755, 0, 1.37}, {0, 1, 0}, kZero, -0.1 * std::numbers::pi, 0.2 * std::numbers::pi, 0, 0},
+    {"l_shoulder", JointKind::ConeTwist, 2, 7, {-0.205, 0, 1.37}, kShoulderConeL, {-1, 0, 0}, 0, 0.5 * std::numbers::pi,
+     -0.25 * std::numbers::pi, 0.25 * std::numbers::pi},
+    {"l_elbow", JointKind::Hinge, 7, 8, {-0.505, 0, 1.37}, {0, 0, -1}, kZero, 0, 0.6 * std::numbers::pi, 0, 0},
+    {"l_wrist", JointKind::Hinge, 8, 9, {-0.755, 0, 1.37}, {0, -1, 0}, kZero, -0.1 * std::numbers::pi, 0.2 * std::numbers::pi, 0, 0},
+    {"r_hip", JointKind::Universal, 0, 10, {0.14, 0, 0.86}, {0, -1, 0}, {1, 0, 0}, -0.1 * std::numbers::pi, 0.3 * std::numbers::pi,
+     -0.15 * std::numbers::pi, 0.75 * std::numbers::pi},
+    {"r_knee", JointKind::Hinge, 10, 11, {0.14, 0, 0.48}, {-1, 0, 0}, kZero, 0, 0.75 * std::numbers::pi, 0, 0},
+    {"r_ankle", JointKind::Hinge, 11, 12, {0.14, 0, 0.08}, {1, 0, 0}, kZero, -0.1 * std::numbers::pi, 0.05 * std::numbers::pi, 0, 0},
+    {"l_hip", JointKind::Universal, 0, 13, {-0.14, 0, 0.86}, {0, 1, 0}, {1, 0, 0}, -0.1 * std::numbers::pi, 0.3 * std::numbers::pi,
+     -0.15 * std::numbers::pi, 0.75 * std::numbers::pi},
+    {"l_knee", JointKind::Hinge, 13, 14, {-0.14, 0, 0.48}, {-1, 0, 0}, kZero, 0, 0.75 * std::numbers::pi, 0, 0},
+    {"l_ankle", JointKind::Hinge, 14, 15, {-0.14, 0, 0.08}, {1, 0, 0}, kZero, -0.1 * std::numbers::pi, 0.05 * std::numbers::pi, 0, 0},
 }};
 
 Quat axisAngle(const Vec3& axis, double angle) { return Quat(Eigen::AngleAxisd(angle, axis)); }
@@ -76,8 +76,8 @@ std::vector<Placement> grid(int n) {
 }
 
 double wrapAngle(double a) {
-    while (a > kPi) a -= 2 * kPi;
-    while (a <= -kPi) a += 2 * kPi;
+    while (a > std::numbers::pi) a -= 2 * std::numbers::pi;
+    while (a <= -std::numbers::pi) a += 2 * std::numbers::pi;
     return a;
 }
 
@@ -103,7 +103,7 @@ std::vector<Placement> scenePlacements(std::string_view scene, int count) {
         std::vector<Placement> out;
         for (int k = 0; k < (count > 0 ? count : 32); ++k) {
             out.push_back({Vec3(0, 0, 0.5 + 0.6 * k),
-                           axisAngle(Vec3::UnitZ(), 0.3 + k * kGolden) * axisAngle(Vec3::UnitX(), kPi / 2),
+                           axisAngle(Vec3::UnitZ(), 0.3 + k * kGolden) * axisAngle(Vec3::UnitX(), std::numbers::pi / 2),
                            Vec3::Zero()});
         }
         return out;

@@ -8,11 +8,11 @@
 #include <cmath>
 #include <string>
 #include <vector>
+#include <numbers>
 
 namespace benchscene {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // The T-pose with the soles on the ground, everything still.
 std::vector<BodyState> standingStill() {
@@ -66,7 +66,7 @@ TEST(BenchMetrics, TiltedBoxPenetratesByItsLowestCorner) {
     auto states = standingStill();
     // Head (half-extents 0.08, 0.1, 0.14) rotated 90° about X, centre 5 cm up: its lowest corner
     // is 0.1 below the centre, 5 cm under the ground.
-    states[3].q = Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitX()));
+    states[3].q = Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitX()));
     states[3].x = Vec3(3, 0, 0.05);
     EXPECT_NEAR(measureStates(states, 1).groundPen, 0.05, 1e-12);
 }
@@ -75,11 +75,11 @@ TEST(BenchMetrics, HingeBentBeyondItsLimitIsAViolationNotAnError) {
     auto states = standingStill();
     // r_wrist hinge about +Y at (0.755, 0, 1.37), limit [−0.1π, 0.2π]: bend the hand 0.3π about it.
     const JointDef& wrist = ragdollJoints()[5];
-    const Quat bend(Eigen::AngleAxisd(0.3 * kPi, wrist.axis1));
+    const Quat bend(Eigen::AngleAxisd(0.3 * std::numbers::pi, wrist.axis1));
     states[6].q = bend;
     states[6].x = wrist.anchor + bend * (states[6].x - wrist.anchor);
     const StateMeasures m = measureStates(states, 1);
-    EXPECT_NEAR(m.limitViol, 0.1 * kPi, 1e-12);
+    EXPECT_NEAR(m.limitViol, 0.1 * std::numbers::pi, 1e-12);
     EXPECT_LT(m.jointErr, 1e-12);
     EXPECT_LT(m.jointAngErr, 1e-12);
 }
@@ -98,8 +98,8 @@ TEST(BenchMetrics, FixedJointRotationAndTwistBeyondLimit) {
     states[1].q = Quat(Eigen::AngleAxisd(0.03, Vec3(1, 1, 0).normalized()));  // belly, fixed to pelvis and chest
     EXPECT_NEAR(measureStates(states, 1).jointAngErr, 0.03, 1e-12);
     states = standingStill();
-    states[3].q = Quat(Eigen::AngleAxisd(0.3 * kPi, Vec3::UnitZ()));  // head twisted 0.3π, limit 0.25π
-    EXPECT_NEAR(measureStates(states, 1).limitViol, 0.05 * kPi, 1e-12);
+    states[3].q = Quat(Eigen::AngleAxisd(0.3 * std::numbers::pi, Vec3::UnitZ()));  // head twisted 0.3π, limit 0.25π
+    EXPECT_NEAR(measureStates(states, 1).limitViol, 0.05 * std::numbers::pi, 1e-12);
 }
 
 TEST(BenchMetrics, FallingRagdollLosesPotentialEnergyWithoutGain) {

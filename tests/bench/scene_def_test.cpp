@@ -7,11 +7,11 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <numbers>
 
 namespace benchscene {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTol = 1e-9;
 
 Quat rot(const Vec3& axis, double angle) { return Quat(Eigen::AngleAxisd(angle, axis.normalized())); }
@@ -101,7 +101,7 @@ TEST(BenchScene, HingeAngleIsTheRotationAboutItsAxisWithSign) {
     EXPECT_NEAR(hingeAngle(elbow, qA, qA * rot(Vec3::UnitZ(), -0.4)), -0.4, kTol);
     EXPECT_NEAR(hingeAngle(elbow, qA, qA * rot(Vec3::UnitZ(), 3.0)), 3.0, kTol);
     // Past π it wraps to the other side.
-    EXPECT_NEAR(hingeAngle(elbow, qA, qA * rot(Vec3::UnitZ(), 3.5)), 3.5 - 2 * kPi, kTol);
+    EXPECT_NEAR(hingeAngle(elbow, qA, qA * rot(Vec3::UnitZ(), 3.5)), 3.5 - 2 * std::numbers::pi, kTol);
     // The same quaternion with the opposite sign is the same rotation.
     const Quat neg(-(qA * rot(Vec3::UnitZ(), 0.9)).coeffs());
     EXPECT_NEAR(hingeAngle(elbow, qA, Quat(neg)), 0.9, kTol);
