@@ -51,6 +51,8 @@ std::string summaryText(const Scene& scene, const RunResult& r) {
     std::string out = "af-sim: " + scene.description + "\n";
     out += r.restTime ? "  at rest after       " + fixed(*r.restTime, 2) + " s simulated\n"
                       : "  not at rest after   " + fixed(r.simulatedSeconds, 2) + " s simulated (time limit)\n";
+    if (scene.lifted > 0)
+        out += "  lifted              " + fixed(scene.lifted, 2) + " units above the drop height, clear of the map's brushes\n";
     out += "  steps               " + std::to_string(r.steps) + " of " + fixed(scene.world.settings().timeStep * 1000, 2) +
            " ms\n";
     out += "  wall time           " + fixed(r.wallSeconds, 3) + " s, " + fixed(microsecondsPerStep(r), 1) + " us per step\n";
@@ -74,6 +76,7 @@ nlohmann::ordered_json summaryJson(const Scene& scene, const RunResult& r) {
     j["scene"] = scene.description;
     j["rest_time_s"] = r.restTime ? nlohmann::ordered_json(*r.restTime) : nlohmann::ordered_json(nullptr);
     j["simulated_s"] = r.simulatedSeconds;
+    j["lifted"] = scene.lifted;
     j["steps"] = r.steps;
     j["wall_s"] = r.wallSeconds;
     j["us_per_step"] = microsecondsPerStep(r);

@@ -1,6 +1,6 @@
 #include "sim_scene.h"
 
-#include "af/collision/narrowphase.h"
+#include "af/dynamics/placement.h"
 #include "af/geometry/brush.h"
 #include "af/text/map_file.h"
 #include "af/text/resource_index.h"
@@ -69,24 +69,10 @@ void push(World& world, FigureId figure, unsigned seed) {
     for (int i = 0; i < bodies; ++i) world.setVelocity({figure, i}, v + w.cross(world.body({figure, i}).position - centre), w);
 }
 
-// Raises `placement` until no body of the figure reaches into the map's brushes, as checked by
-// the narrowphase (a figure wider than the ground under its centre, or hooked to the world
-// beside a step, would start with a body inside a brush: the projection would push that body
-// out and open the joints to do it). The whole figure rises, so its joints stay as built; a
-// figure no lift clears (a ceiling) is an error.
-RigidPose clearOfBrushes(const Scene& scene, const Figure& definition, RigidPose placement, int figureNumber) {
-    constexpr Real kClearance = 1;  // units above the deepest overlap
-    constexpr int kTries = 16;
-    std::vector<Polytope> shapes;
-    for (const FigureBody& b : definition.bodies) shapes.push_back(b.shape);
-    for (int i = 0; i < kTries; ++i) {
-        const Figure placed = placeFigure(definition, placement);
-        std::vector<RigidPose> poses;
-        for (const FigureBody& b : placed.bodies) poses.push_back(b.pose);
-        const Real depth = deepestOverlap(shapes, poses, scene.statics);
-        if (depth <= 0) return placement;
-        placement.position.z() += depth + kClearance;
-    }
+// A figure wider than the ground under its centre, or hooked to the world beside a step, would
+// start with a body inside a brush: it is lifted clear (placement.h), or refused.
+RigidPose clearOfBrushes(const Scene& scene, const Figure& definition, const RigidPose& placement, int figureNumber) {
+    if (const std::optional<RigidPose> clear = liftedClear(definition, placement, scene.statics)) return *clear;
     throw SceneError("figure " + std::to_string(figureNumber) + " cannot be placed clear of the map's brushes above (0, 0)");
 }
 
@@ -101,7 +87,7 @@ Scene buildScene(const SceneOptions& options) {
     FigureResult built = buildFigure(resources);
     if (!built.ok()) throw SceneError(built.formatDiagnostics());
 
-    Scene scene{World(options.world), std::make_shared<const Figure>(std::move(*built.figure)), {}, {}, {}, {}};
+    Scene scene{World(options.world), std::make_shared<const Figure>(std::move(*built.figure)), {}, {}, {}, {}, 0};
     const Figure& definition = *scene.definition;
     if (options.map.empty()) {
         scene.world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
@@ -115,7 +101,9 @@ Scene buildScene(const SceneOptions& options) {
         placement.rotation = Eigen::AngleAxis<Real>(i * 0.5 * std::numbers::pi_v<Real>, Vec3::UnitZ()).toRotationMatrix() *
                              rotationFromAngles(kTiltDegrees, 0, 0);
         placement.position.z() = bottom - heightRange(definition, placement).lowest;
+        const Real dropZ = placement.position.z();
         placement = clearOfBrushes(scene, definition, placement, i + 1);
+        scene.lifted = std::max(scene.lifted, placement.position.z() - dropZ);
         bottom = heightRange(definition, placement).highest + kPileSpacing;
         const FigureId id = scene.world.spawn(scene.definition, placement);
         if (options.seed) push(scene.world, id, *options.seed + static_cast<unsigned>(i));

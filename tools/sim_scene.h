@@ -37,6 +37,7 @@ struct Scene {
     std::vector<Polytope> statics;  // world space: the map's brushes
     std::optional<Real> floorZ;  // the infinite floor, when there is no map
     std::string description;     // what was loaded, for the summary
+    Real lifted = 0;  // units the most lifted figure rose above its drop height to clear the brushes
 };
 
 Scene buildScene(const SceneOptions& options);

@@ -3,8 +3,10 @@
 // classname is an AF entityDef is spawned at its origin and angles and then posed by its saved
 // `body` keys (docs/formats.md §5.5, docs/figures.md §3.9).
 
+#include "console/console_text.h"
 #include "console/session_state.h"
 
+#include "af/dynamics/placement.h"
 #include "af/figure/saved_pose.h"
 #include "af/geometry/brush.h"
 #include "af/text/af_writer.h"
@@ -181,16 +183,29 @@ std::optional<std::string> Session::State::spawn(const std::string& entityDef, c
         if (!v) return "spawn " + entityDef + ": angle must be a number, found '" + angle->value + "'";
         placement.rotation = rotationFromAngles(0, (*v)[0], 0);
     }
-    if (const MapKeyValue* origin = keys.find("origin")) {
+    const MapKeyValue* origin = keys.find("origin");
+    if (origin) {
         const auto v = numbers(origin->value, 3);
         if (!v) return "spawn " + entityDef + ": origin must be three numbers, found '" + origin->value + "'";
         placement.position = Vec3((*v)[0], (*v)[1], (*v)[2]);
     } else if (!saved) {
+        // Dropped above the ground under (0, 0), then lifted clear of any brush it would reach
+        // into (a wide figure beside a step), as af-sim drops it (placement.h).
         placement.position.z() = groundHeight(0, 0) + kDropHeight - heightRange(*figure, placement).lowest;
+        const std::optional<RigidPose> clear = liftedClear(*figure, placement, statics);
+        if (!clear) return "spawn " + entityDef + ": no height above (0, 0) clears the map's brushes; give an origin";
+        placement = *clear;
     }
     std::string name(keys.value("name"));
     if (name.empty()) name = unusedName(entityDef);
     else if (find(name)) return "spawn " + entityDef + ": an entity named " + name + " exists";
+    // Where the user or the map says is where it goes, as in Doom (whose af_testSolid warns too).
+    if (origin && !saved) {
+        const Real depth = staticOverlap(*figure, placement, statics);
+        if (depth > kStuckPenetration)
+            out.info("warning: " + name + " starts " + fixed(depth) +
+                     " units inside the map's brushes: the first steps push it out, and may pull its joints open");
+    }
 
     std::optional<std::vector<RigidPose>> poses;
     if (saved) {

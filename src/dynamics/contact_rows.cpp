@@ -45,13 +45,13 @@ void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
 }
 
 // One body of a contact, looked up once for all of its rows; body is null for the world.
-struct Side {
+struct ContactSide {
     const RigidBody* body = nullptr;
     const Mat3* inverseInertia = nullptr;
     Vec3 lever = Vec3::Zero();  // r = p − x
 };
 
-Side sideOf(int index, std::span<const RigidBody> bodies, const Mat3& inverseInertia, const Vec3& point) {
+ContactSide sideOf(int index, std::span<const RigidBody> bodies, const Mat3& inverseInertia, const Vec3& point) {
     if (index == kWorldBody) return {};
     const RigidBody& body = bodies[static_cast<std::size_t>(index)];
     return {&body, &inverseInertia, point - body.position};
@@ -70,7 +70,7 @@ struct RowRest {
 // Appends the row along d, with its softness relative to its own J M⁻¹ Jᵀ, made in place with
 // each member written once. Inlined into writeRows, so that the three rows of a point share the
 // loads of its bodies, lever arms and inertias (and no call costs a frame).
-[[gnu::always_inline]] inline void addRowAlong(const ContactView& c, const Side& a, const Side& b, const Vec3& d,
+[[gnu::always_inline]] inline void addRowAlong(const ContactView& c, const ContactSide& a, const ContactSide& b, const Vec3& d,
                                                Real relativeCfm, const RowRest& rest, ConstraintRows& out) {
     Vec3 linearA = Vec3::Zero(), angularA = Vec3::Zero(), linearB = Vec3::Zero(), angularB = Vec3::Zero();
     Real diagonal = 0;
@@ -88,7 +88,7 @@ struct RowRest {
                    rest.frictionSource, rest.frictionCoefficient, relativeCfm * diagonal);
 }
 
-Real velocityAlong(const ContactView& c, const Side& a, const Side& b, const Vec3& d) {
+Real velocityAlong(const ContactView& c, const ContactSide& a, const ContactSide& b, const Vec3& d) {
     Real v = 0;
     if (a.body) v += d.dot(a.body->velocityAt(c.pointA));
     if (b.body) v -= d.dot(b.body->velocityAt(c.pointB));
@@ -99,8 +99,8 @@ Real velocityAlong(const ContactView& c, const Side& a, const Side& b, const Vec
 // inverse inertias of A and B (not read for the world). Inlined into each of its callers.
 [[gnu::always_inline]] inline int writeRows(const ContactView& c, std::span<const RigidBody> bodies, const Mat3& inverseInertiaA,
               const Mat3& inverseInertiaB, const ContactSettings& settings, ConstraintRows& out) {
-    const Side a = sideOf(c.bodyA, bodies, inverseInertiaA, c.pointA);
-    const Side b = sideOf(c.bodyB, bodies, inverseInertiaB, c.pointB);
+    const ContactSide a = sideOf(c.bodyA, bodies, inverseInertiaA, c.pointA);
+    const ContactSide b = sideOf(c.bodyB, bodies, inverseInertiaB, c.pointB);
     const int normalIndex = static_cast<int>(out.size());
     {
         RowRest normal{.error = settings.slop - c.depth, .lo = 0};

@@ -26,16 +26,16 @@
 namespace af::joint_detail {
 namespace {
 
-struct TwistState {
+struct TwistLock {
     Real error = 0;
     Vec3 gradient = Vec3::Zero();
 };
 
-TwistState twistState(const Joint& joint, const Pair& pair) {
+TwistLock twistLock(const Joint& joint, const Pair& pair) {
     Quat r = pair.a.orientation * joint.relative.conjugate() * pair.b.orientation.conjugate();
     if (r.w() < 0) r.coeffs() = -r.coeffs();
     const Vec3 b = -pair.b.direction(joint.axisB);
-    TwistState s;
+    TwistLock s;
     s.error = r.vec().dot(b);
     s.gradient = Real(0.5) * (r.w() * b - b.cross(r.vec()));
     return s;
@@ -47,7 +47,7 @@ JointRowRange writeUniversalRows(const Joint& joint, const Pair& pair, const Joi
                                  RowOut out) {
     JointRowRange range;
     writePointRows(pair, pair.a.point(joint.anchorA), pair.b.point(joint.anchorB), settings.jointCfm, out);
-    const TwistState twist = twistState(joint, pair);
+    const TwistLock twist = twistLock(joint, pair);
     addAngularRow(pair, [&] { return twist.gradient; }, twist.error, -kInfinity, kInfinity, settings.jointCfm, out);
     range.equalityRows = 4;
     range.limitRows = writeShaftLimitRows(joint, pair, settings, out);

@@ -17,15 +17,15 @@ namespace {
 constexpr Real kPivotTolerance = 1e-13;
 
 // The Jacobian and the response of `row` on the side that is body `b`.
-struct Side {
+struct JacobianSide {
     const Vec3& linear;
     const Vec3& angular;
 };
-Side jacobianOn(const ConstraintRow& row, int b) {
-    return row.bodyA == b ? Side{row.linearA, row.angularA} : Side{row.linearB, row.angularB};
+JacobianSide jacobianOn(const ConstraintRow& row, int b) {
+    return row.bodyA == b ? JacobianSide{row.linearA, row.angularA} : JacobianSide{row.linearB, row.angularB};
 }
-Side responseOn(const ConstraintRow& row, const RowResponse& m, int b) {
-    return row.bodyA == b ? Side{m.linearA, m.angularA} : Side{m.linearB, m.angularB};
+JacobianSide responseOn(const ConstraintRow& row, const RowResponse& m, int b) {
+    return row.bodyA == b ? JacobianSide{m.linearA, m.angularA} : JacobianSide{m.linearB, m.angularB};
 }
 
 }  // namespace
@@ -112,7 +112,7 @@ void SparseRowFactor::assemble(std::span<const ConstraintRow> rows, std::span<co
         packed_.clear();
         for (const auto& [place, row] : packOrder_) {
             const std::size_t r = static_cast<std::size_t>(row);
-            const Side j = jacobianOn(rows[r], body), m = responseOn(rows[r], responses[r], body);
+            const JacobianSide j = jacobianOn(rows[r], body), m = responseOn(rows[r], responses[r], body);
             packed_.push_back({{j.linear.x(), j.linear.y(), j.linear.z(), j.angular.x(), j.angular.y(), j.angular.z()},
                                {m.linear.x(), m.linear.y(), m.linear.z(), m.angular.x(), m.angular.y(), m.angular.z()},
                                groupOfRow_[r],
@@ -218,13 +218,13 @@ void SparseRowFactor::column(int row, std::span<const ConstraintRow> rows, std::
     const RowResponse& m = responses[static_cast<std::size_t>(row)];
     for (int body : {firstBody(rowKey_[static_cast<std::size_t>(row)]), secondBody(rowKey_[static_cast<std::size_t>(row)])}) {
         if (body == kNoBody) continue;
-        const Side mr = responseOn(r, m, body);
+        const JacobianSide mr = responseOn(r, m, body);
         const std::size_t b = static_cast<std::size_t>(body);
         for (int p = bodyStart_[b]; p < bodyStart_[b + 1]; ++p) {
             const int s = bodyRows_[static_cast<std::size_t>(p)];
             const int v = variableOf(s);
             if (v < 0) continue;
-            const Side js = jacobianOn(rows[static_cast<std::size_t>(s)], body);
+            const JacobianSide js = jacobianOn(rows[static_cast<std::size_t>(s)], body);
             y[static_cast<std::size_t>(v)] += js.linear.dot(mr.linear) + js.angular.dot(mr.angular);
             active[static_cast<std::size_t>(groupOfRow_[static_cast<std::size_t>(s)])] = 1;
         }

@@ -19,10 +19,6 @@ namespace af::tree_detail {
 
 namespace {
 
-int nodeOf(const Forest& forest, int body) {
-    return body == kWorldBody ? -1 : forest.nodeOfBody[static_cast<std::size_t>(body)];
-}
-
 template <int M>
 using Small = Eigen::Matrix<Real, M, M>;
 

@@ -55,6 +55,11 @@ struct Forest {
 
 Forest buildForest(std::span<const RigidBody> bodies, std::span<const Joint> joints);
 
+// The node of a body, −1 for the world (and a static body).
+inline int nodeOf(const Forest& forest, int body) {
+    return body == kWorldBody ? -1 : forest.nodeOfBody[static_cast<std::size_t>(body)];
+}
+
 // The factorisation H = L D Lᵀ: per node D⁻¹ and F = E D⁻¹, with E the block coupling the node
 // to its parent (L's block below the diagonal). Node vectors are Vec6 per node.
 class TreeFactor {

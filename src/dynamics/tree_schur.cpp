@@ -6,13 +6,6 @@
 
 namespace af::tree_detail {
 
-namespace {
-
-int nodeOf(const Forest& forest, int body) {
-    return body == kWorldBody ? -1 : forest.nodeOfBody[static_cast<std::size_t>(body)];
-}
-
-}  // namespace
 
 // Row k's path is the union of its bodies' paths to their roots: walked up from the one or two
 // body nodes, always from the smaller of the (at most two) current nodes, so the nodes come out

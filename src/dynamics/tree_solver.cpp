@@ -26,8 +26,12 @@ std::uint64_t rowKey(std::uint64_t group, RowKind kind, std::uint64_t offset) {
     return (group << 24) | (static_cast<std::uint64_t>(kind) << 20) | offset;
 }
 
+}  // namespace
+
 // What the last solve of one problem ended with, to warm-start the next: one entry per
-// auxiliary row, sorted by key.
+// auxiliary row, sorted by key. (Named, not anonymous: Impl's members are of these types.)
+namespace tree_detail {
+
 struct WarmEntry {
     std::uint64_t key;
     int bodyA, bodyB;
@@ -40,7 +44,7 @@ struct WarmStart {
     std::vector<WarmEntry> entries;
 };
 
-}  // namespace
+}  // namespace tree_detail
 
 struct TreeSolver::Impl {
     LcpExactSolver lcp;

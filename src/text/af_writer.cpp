@@ -13,12 +13,12 @@ constexpr const char* kHeaderComment =
     "\tThe layout is that of the Doom 3 AF editor; comments in a decl are not kept.\n"
     "*/\n\n";
 
-class Writer : public text_detail::TextWriter<Writer> {
+class AfWriter : public text_detail::TextWriter<AfWriter> {
 public:
-    Writer& key(std::string_view k) { return raw("\t").raw(k).raw(" "); }
-    Writer& end() { return raw("\n"); }
+    AfWriter& key(std::string_view k) { return raw("\t").raw(k).raw(" "); }
+    AfWriter& end() { return raw("\n"); }
 
-    Writer& vec(const AFVector& v) {
+    AfWriter& vec(const AFVector& v) {
         if (v.negated) raw("-");
         switch (v.kind) {
         case AFVector::Kind::Coordinates:
@@ -136,7 +136,7 @@ public:
     }
 
 private:
-    Writer& pyramid(const AFConstraint& c) {
+    AfWriter& pyramid(const AFConstraint& c) {
         return key("pyramidLimit").vec(c.limitAxis).raw(", ").num(c.limitAngles[0]).raw(", ").num(c.limitAngles[1])
             .raw(", ").num(c.limitAngles[2]);
     }
@@ -145,7 +145,7 @@ private:
 }  // namespace
 
 std::string writeDecl(const DeclAF& decl) {
-    Writer w;
+    AfWriter w;
     w.raw(kHeaderComment).raw("articulatedFigure ").raw(decl.name).raw(" {\n");
     w.settings(decl.settings);
     for (const AFBody& b : decl.bodies) w.body(b);

@@ -8,11 +8,11 @@ namespace af {
 
 namespace {
 
-class Writer : public text_detail::TextWriter<Writer> {
+class MapWriter : public text_detail::TextWriter<MapWriter> {
 public:
     // `( v v v )` from any range of numbers.
     template <class Numbers>
-    Writer& numbers(const Numbers& values) {
+    MapWriter& numbers(const Numbers& values) {
         raw("(");
         for (Real v : values) raw(" ").num(v);
         return raw(" )");
@@ -68,7 +68,7 @@ public:
 }  // namespace
 
 std::string writeMapFile(const MapFile& map) {
-    Writer w;
+    MapWriter w;
     w.raw("Version ").num(map.version).raw("\n");
     for (std::size_t i = 0; i < map.entities.size(); ++i) w.entity(map.entities[i], i);
     return w.take();

@@ -63,10 +63,10 @@ void checkWritable(const Md5Anim& a) {
     for (Real v : a.components) checkFinite(v, "a frame component");
 }
 
-class Writer : public text_detail::TextWriter<Writer> {
+class Md5Writer : public text_detail::TextWriter<Md5Writer> {
 public:
-    Writer& tuple(Real x, Real y, Real z) { return raw("( ").num(x).raw(" ").num(y).raw(" ").num(z).raw(" )"); }
-    Writer& tuple(const Real3& v) { return tuple(v[0], v[1], v[2]); }
+    Md5Writer& tuple(Real x, Real y, Real z) { return raw("( ").num(x).raw(" ").num(y).raw(" ").num(z).raw(" )"); }
+    Md5Writer& tuple(const Real3& v) { return tuple(v[0], v[1], v[2]); }
 
     void header(const Md5Anim& a) {
         raw("MD5Version 10\ncommandline ").quoted(a.commandLine).raw("\n\n");
@@ -151,7 +151,7 @@ Md5Quat fileQuat(const Md5Quat& q, const std::string& what) {
 
 std::string writeMd5Anim(const Md5Anim& anim) {
     checkWritable(anim);
-    Writer w;
+    Md5Writer w;
     w.header(anim);
     w.hierarchy(anim);
     w.bounds(anim);

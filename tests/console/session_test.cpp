@@ -3,6 +3,7 @@
 
 #include "console/session.h"
 
+#include "af/collision/narrowphase.h"
 #include "af/figure/saved_pose.h"
 #include "af/text/map_file.h"
 
@@ -184,6 +185,37 @@ TEST(Session, ASaveCutShortLeavesTheOldMapWhole) {
     c.session.setWriteFaultHook({});
     ASSERT_TRUE(c.run("saveRagdolls " + path.string()).ok()) << c.errors;
     EXPECT_NE(readFile(path), before) << "the figure moved, so the new save differs";
+}
+
+// A wall beside (0, 0) that a ragdoll dropped there would reach into: `spawn` without an origin
+// lifts the figure clear of it (placement.h), as af-sim does; an origin given inside it is obeyed,
+// with a warning, as Doom's af_testSolid warns.
+TEST(Session, ASpawnBesideAWallIsLiftedClearAndAnOriginInsideItIsWarnedOf) {
+    const std::string face = " ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"textures/af/floor\" 0 0 0\n";
+    const auto brush = [&](const std::vector<std::string>& planes) {
+        std::string text = "{\n brushDef3\n {\n";
+        for (const std::string& p : planes) text += "  ( " + p + " )" + face;
+        return text + " }\n}\n";
+    };
+    const fs::path map = scratch("wall.map");
+    std::ofstream(map) << "Version 2\n{\n\"classname\" \"worldspawn\"\n"
+                       << brush({"0 0 -1 -16", "0 0 1 0", "0 -1 0 -512", "1 0 0 -512", "0 1 0 -512", "-1 0 0 -512"})
+                       << brush({"0 0 -1 0", "0 0 1 -80", "0 -1 0 -64", "1 0 0 -100", "0 1 0 -64", "-1 0 0 2"}) << "}\n";
+    SessionConsole c;
+    ASSERT_TRUE(c.run("map " + map.string() + "; spawn ragdoll_humanoid").ok()) << c.errors;
+    const World& world = c.session.world();
+    const FigureId lifted = world.figureIds().at(0);
+    std::vector<Polytope> shapes;
+    for (const FigureBody& b : world.definition(lifted).bodies) shapes.push_back(b.shape);
+    EXPECT_EQ(deepestOverlap(shapes, world.bodyPoses(lifted), c.session.statics()), 0);
+    // The wall (x from 2 to 100, up to z = 80) is in the way of the usual drop, 32 units up.
+    for (const RigidPose& p : world.bodyPoses(lifted)) EXPECT_GT(p.position.z(), 80) << "not lifted over the wall";
+    EXPECT_EQ(c.info.find("warning"), std::string::npos) << c.info;
+
+    ASSERT_TRUE(c.run("spawn ragdoll_humanoid origin \"0 0 40\" name inwall").ok()) << c.errors;
+    const FigureId inWall = world.figureIds().at(1);
+    EXPECT_NEAR(world.bodyPoses(inWall)[0].position.x(), world.bodyPoses(lifted)[0].position.x(), 1e-9) << "placed where asked";
+    EXPECT_NE(c.info.find("warning: inwall starts "), std::string::npos) << c.info;
 }
 
 }  // namespace

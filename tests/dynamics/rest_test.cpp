@@ -22,9 +22,9 @@
 namespace af {
 namespace {
 
-constexpr Real kDt = Real(1) / 64;
+constexpr Real kMonitorDt = Real(1) / 64;
 constexpr int kWindowCloseStep = 66;
-const Vec3 kDoomGravity(0, 0, -1066);
+const Vec3 kFallGravity(0, 0, -1066);
 
 using AngleAxis = Eigen::AngleAxis<Real>;
 
@@ -56,7 +56,7 @@ int stepsUntilRest(RestMonitor& monitor, const std::function<std::vector<BodyMot
                    int maxSteps, int firstStep = 1) {
     for (int n = firstStep; n < firstStep + maxSteps; ++n) {
         const std::vector<BodyMotion> bodies = history(n);
-        if (monitor.update(kDt, bodies)) return n;
+        if (monitor.update(kMonitorDt, bodies)) return n;
     }
     return 0;
 }
@@ -109,7 +109,7 @@ bool restsAtOnceWith(Vec3 BodyMotion::*field, Real value) {
     b.*field = oblique(value);
     RestMonitor monitor(declDefaults());
     const std::vector<BodyMotion> bodies{stillAt(Vec3(5, 0, 0)), b};
-    return monitor.update(kDt, bodies);
+    return monitor.update(kMonitorDt, bodies);
 }
 
 TEST(RestMonitor, EachSuspendThresholdDecidesAStepJustBelowOrAbove) {
@@ -197,14 +197,14 @@ TEST(RestMonitor, ContactJitterDoesNotKeepAFigureAwake) {
 // is under the threshold, but its acceleration is g; and Doom's endpoint-only window would see no
 // move at all.
 TEST(RestMonitor, TopOfBallisticArcStaysAwake) {
-    const Real apexTime = (1 + kWindowCloseStep) * kDt / 2;
-    const Vec3 up = -kDoomGravity * apexTime;
+    const Real apexTime = (1 + kWindowCloseStep) * kMonitorDt / 2;
+    const Vec3 up = -kFallGravity * apexTime;
     const auto flight = [&](int n) {
-        const Real t = n * kDt;
+        const Real t = n * kMonitorDt;
         BodyMotion b;
-        b.pose.position = Vec3(0, 0, 100) + up * t + kDoomGravity * (t * t / 2);
-        b.linearVelocity = up + kDoomGravity * t;
-        b.linearAcceleration = kDoomGravity;
+        b.pose.position = Vec3(0, 0, 100) + up * t + kFallGravity * (t * t / 2);
+        b.linearVelocity = up + kFallGravity * t;
+        b.linearAcceleration = kFallGravity;
         return std::vector<BodyMotion>{b};
     };
     const RestSettings s = declDefaults();
@@ -214,15 +214,15 @@ TEST(RestMonitor, TopOfBallisticArcStaysAwake) {
     ASSERT_NEAR((flight(kWindowCloseStep)[0].pose.position - flight(1)[0].pose.position).norm(), 0, 1e-9);
 
     RestMonitor monitor(s);
-    for (int n = 1; n <= kWindowCloseStep + 10; ++n) EXPECT_FALSE(monitor.update(kDt, flight(n))) << "step " << n;
+    for (int n = 1; n <= kWindowCloseStep + 10; ++n) EXPECT_FALSE(monitor.update(kMonitorDt, flight(n))) << "step " << n;
 }
 
 // A limb swinging with the window's period: back at its recorded pose when the window closes,
 // having swung 30 units away in between.
 TEST(RestMonitor, WindowCountsTheLargestMoveNotOnlyTheEndpoints) {
-    const Real period = (kWindowCloseStep - 1) * kDt;
+    const Real period = (kWindowCloseStep - 1) * kMonitorDt;
     const auto swing = [&](int n) {
-        const Real phase = 2 * std::numbers::pi * (n - 1) * kDt / period;
+        const Real phase = 2 * std::numbers::pi * (n - 1) * kMonitorDt / period;
         BodyMotion b = busy(stillAt(Vec3(15 * (1 - std::cos(phase)), 0, 0)));
         return std::vector<BodyMotion>{stillAt(), b};
     };
@@ -262,13 +262,13 @@ TEST(RestMonitor, MaxMoveTimeRestsAFigureThatKeepsMoving) {
 TEST(RestMonitor, StaysAtRestUntilWoken) {
     RestMonitor monitor(declDefaults());
     const std::vector<BodyMotion> still{stillAt()};
-    ASSERT_TRUE(monitor.update(kDt, still));
+    ASSERT_TRUE(monitor.update(kMonitorDt, still));
     const std::vector<BodyMotion> moving{busy(stillAt())};
-    EXPECT_TRUE(monitor.update(kDt, moving));
+    EXPECT_TRUE(monitor.update(kMonitorDt, moving));
     EXPECT_TRUE(monitor.atRest());
     monitor.wake();
     EXPECT_FALSE(monitor.atRest());
-    EXPECT_FALSE(monitor.update(kDt, moving));
+    EXPECT_FALSE(monitor.update(kMonitorDt, moving));
 }
 
 TEST(RestMonitor, WakeResetsTheAwakeTime) {
@@ -296,7 +296,7 @@ TEST(RestMonitor, PutToRestRestsAtOnce) {
     RestMonitor monitor(declDefaults());
     monitor.putToRest();
     const std::vector<BodyMotion> moving{busy(stillAt())};
-    EXPECT_TRUE(monitor.update(kDt, moving));
+    EXPECT_TRUE(monitor.update(kMonitorDt, moving));
     EXPECT_EQ(monitor.activateTime(), 0);
 }
 
@@ -306,7 +306,7 @@ TEST(RestMonitor, AStepOfNoTimeChangesNothing) {
     RestMonitor monitor(s);
     const std::vector<BodyMotion> still{stillAt()};
     EXPECT_FALSE(monitor.update(0, still));
-    EXPECT_FALSE(monitor.update(-kDt, still));
+    EXPECT_FALSE(monitor.update(-kMonitorDt, still));
     EXPECT_FALSE(monitor.update(std::numeric_limits<Real>::quiet_NaN(), still));
     EXPECT_EQ(monitor.activateTime(), 0);
 }
@@ -315,10 +315,10 @@ TEST(RestMonitor, ABodyCountChangeInsideTheWindowIsRefused) {
     RestMonitor monitor(declDefaults());
     const std::vector<BodyMotion> two{busy(stillAt()), stillAt()};
     const std::vector<BodyMotion> three{busy(stillAt()), stillAt(), stillAt()};
-    ASSERT_FALSE(monitor.update(kDt, two));
-    EXPECT_THROW(monitor.update(kDt, three), std::invalid_argument);
+    ASSERT_FALSE(monitor.update(kMonitorDt, two));
+    EXPECT_THROW(monitor.update(kMonitorDt, three), std::invalid_argument);
     monitor.wake();
-    EXPECT_FALSE(monitor.update(kDt, three));
+    EXPECT_FALSE(monitor.update(kMonitorDt, three));
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ RigidPose placedAt(const Vec3& position, Real yaw, Real pitch) {
     return {position, rotationFromAngles(pitch, yaw, 0)};
 }
 
-int stepUntilRest(World& world, Real seconds) {
+int stepsUntilRest(World& world, Real seconds) {
     for (int i = 1; world.time() < seconds; ++i) {
         world.step();
         if (world.atRest()) return i;
@@ -78,7 +78,7 @@ TEST(WorldFigures, HandlesStayValidWhenAnotherFigureIsRemoved) {
     EXPECT_THROW(world.bodyPoses(b), std::invalid_argument);
     EXPECT_THROW(world.remove(b), std::invalid_argument);
     // The two left land and rest with their joints closed; the world numbers nothing stale.
-    ASSERT_GT(stepUntilRest(world, 5), 0);
+    ASSERT_GT(stepsUntilRest(world, 5), 0);
     EXPECT_LT(world.maxJointError(), 1e-9);
     EXPECT_LT(world.maxPenetration(), world.settings().contact.slop * 1.02);
     const FigureId d = world.spawn(definition, placedAt(Vec3(0, 300, 10), 0, 90));
@@ -91,10 +91,10 @@ TEST(WorldFigures, RemovingAFigureWakesWhatRestedOnIt) {
     world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
     const FigureId lower = world.addFigure(freeBox(Vec3(8, 8, 8), Vec3(0, 0, 8)));
     const FigureId upper = world.addFigure(freeBox(Vec3(4, 4, 4), Vec3(0, 0, 20)));
-    ASSERT_GT(stepUntilRest(world, 3), 0);
+    ASSERT_GT(stepsUntilRest(world, 3), 0);
     world.remove(lower);
     EXPECT_FALSE(world.figureAtRest(upper));
-    ASSERT_GT(stepUntilRest(world, 6), 0);
+    ASSERT_GT(stepsUntilRest(world, 6), 0);
     EXPECT_NEAR(world.body({upper, 0}).position.z(), 4, world.settings().contact.slop);
 }
 
@@ -166,7 +166,7 @@ TEST(WorldFigures, ADraggedHandHoldsTheFigureBelowTheTarget) {
     World world;
     world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
     const FigureId id = world.spawn(definition, placedAt(Vec3(0, 0, 1), 0, 90));
-    ASSERT_GT(stepUntilRest(world, 4), 0);
+    ASSERT_GT(stepsUntilRest(world, 4), 0);
     const int hand = definition->findBody("rhand");
     ASSERT_GE(hand, 0);
     const Vec3 target = world.body({id, hand}).position + Vec3(0, 0, 40);

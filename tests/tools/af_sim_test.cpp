@@ -274,6 +274,8 @@ TEST(AfSim, AFigureThatWouldStartInsideABrushIsLiftedClearOfIt) {
     const SimRun run = afSim("--map " + map.string() + " --seconds 4 --json");
     ASSERT_EQ(run.status, 0) << run.out;
     const nlohmann::json j = nlohmann::json::parse(run.out);
+    // Dropped at (0, 0) the tilted humanoid would lean 12.2 units into the wall (x > -2).
+    EXPECT_GT(j["lifted"].get<double>(), 12) << "not lifted clear of the wall";
     EXPECT_LT(j["max_joint_error"].get<double>(), 1e-6);
     EXPECT_LT(j["max_penetration"].get<double>(), 0.5);
 }
