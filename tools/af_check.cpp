@@ -6,6 +6,7 @@
 // usage. Warnings do not change the status, except with --strict, which makes every warning an
 // error: a lint for files that should load in Doom 3 itself without a word.
 
+#include "command_line_usage.h"
 #include "af/text/af_parser.h"
 #include "af/text/af_writer.h"
 #include "af_json.h"
@@ -136,16 +137,11 @@ int main(int argc, char** argv) {
                  "treat every warning as an error (exit status 1): for files that should load in Doom 3 "
                  "without a word");
     format->excludes(figure)->excludes(entity);
-    try {
-        app.parse(argc, argv);
+    const auto exitStatus = af::tools::parseCommandLine(app, argc, argv, "af-check", [&] {
         const bool figureMode = !options.figure.empty() || !options.entity.empty();
         if (figureMode == !options.files.empty())
             throw CLI::ValidationError("give .af files, or --figure/--entity NAME, but not both");
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        app.exit(e);
-        return 2;
-    }
+    });
+    if (exitStatus) return *exitStatus;
     return options.files.empty() ? checkFigure(options) : checkFiles(options);
 }

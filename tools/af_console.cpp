@@ -10,6 +10,7 @@
 // stdin that is not a terminal) failed, or at the first error of any kind under --strict;
 // 2 for bad usage (an unknown option) or when the session cannot be made.
 
+#include "command_line_usage.h"
 #include "af_console_readline.h"
 #include "console_completion.h"
 #include "console_screenshot.h"
@@ -186,17 +187,8 @@ int main(int argc, char** argv) {
     app.footer("After the options, `+command args` run commands in order, as Doom's engine does\n"
                "(af-console +spawn ragdoll_humanoid +list). Then commands are read from the terminal,\n"
                "or from stdin when it is not one, until `quit` or the end of the input.");
-    try {
-        app.parse(int(1 + plus.leading.size()), argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        // CLI11's own codes (105, 109, …) would say nothing to a script beyond "bad usage".
-        std::cerr << "af-console: error: " << e.what() << "\n" << "Run with --help for the options.\n";
-        return 2;
-    }
+    if (const auto exitStatus = af::tools::parseCommandLine(app, int(1 + plus.leading.size()), argv, "af-console"))
+        return *exitStatus;
     try {
         return runConsole(o, plus.commands);
     } catch (const std::exception& e) {

@@ -7,6 +7,7 @@
 // makes no figure, a file that exists or cannot be written); then nothing is written, but for the
 // files before one whose write failed.
 
+#include "command_line_usage.h"
 #include "gen_output.h"
 
 #include "af/figure/figure.h"
@@ -105,14 +106,7 @@ int main(int argc, char** argv) {
     app.add_option("--total-mass", o.gen.totalMass, "the figure's mass (default: from its size, as our humanoid's)")
         ->check(CLI::PositiveNumber);
     app.add_flag("--force", o.force, "replace files that exist");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "af-gen: error: " << e.what() << "\n" << "Run with --help for the options.\n";
-        return 2;
-    }
+    if (const auto exitStatus = af::tools::parseCommandLine(app, argc, argv, "af-gen")) return *exitStatus;
     try {
         return generate(o);
     } catch (const std::exception& e) {

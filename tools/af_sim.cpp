@@ -10,6 +10,7 @@
 // a joint open or a contact deep: World::kStuckJointError), 2 for bad usage or bad input (an unknown option or
 // value, an unknown entity, a file that does not load or cannot be written).
 
+#include "command_line_usage.h"
 #include "sim_bake.h"
 #include "sim_output.h"
 
@@ -93,17 +94,7 @@ int main(int argc, char** argv) {
     app.add_option("--md5anim", o.md5anim, "bake the first figure's skeleton motion into an .md5anim");
     noMap->excludes(map);
     o.scene.world.timeStep = 1.0 / 60;
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        // CLI11's own codes (105, 109, …) would say nothing to a script beyond "bad usage".
-        std::cerr << "af-sim: error: " << e.what() << "\n" << "Run with --help for the options.\n";
-        return 2;
-    }
+    if (const auto exitStatus = af::tools::parseCommandLine(app, argc, argv, "af-sim")) return *exitStatus;
     if (!o.scene.figure.empty()) o.scene.entity.clear();
     try {
         return simulate(o);

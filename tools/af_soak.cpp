@@ -6,6 +6,7 @@
 // joint open or a contact deep, or the library threw or refused a figure the soak made valid; 2
 // for bad usage or bad input (an unknown option, a map that does not load).
 
+#include "command_line_usage.h"
 #include "soak_drop.h"
 
 #include "af/geometry/brush.h"
@@ -239,14 +240,7 @@ int main(int argc, char** argv) {
     app.add_option("--max-wall", o.maxWall, "wall seconds a drop may take before it stops as too slow (0: no limit; "
                                             "results then depend on the machine)")->check(CLI::Range(0.0, 1e9))->capture_default_str();
     app.add_flag("--list", o.list, "print every drop's row before the table");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "af-soak: error: " << e.what() << "\nRun with --help for the options.\n";
-        return 2;
-    }
+    if (const auto exitStatus = af::tools::parseCommandLine(app, argc, argv, "af-soak")) return *exitStatus;
     try {
         return soak(o);
     } catch (const std::exception& e) {

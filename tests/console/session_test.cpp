@@ -6,6 +6,7 @@
 #include "af/collision/narrowphase.h"
 #include "af/figure/saved_pose.h"
 #include "af/text/map_file.h"
+#include "text/map_text.h"
 
 #include <gtest/gtest.h>
 
@@ -191,16 +192,8 @@ TEST(Session, ASaveCutShortLeavesTheOldMapWhole) {
 // lifts the figure clear of it (placement.h), as af-sim does; an origin given inside it is obeyed,
 // with a warning, as Doom's af_testSolid warns.
 TEST(Session, ASpawnBesideAWallIsLiftedClearAndAnOriginInsideItIsWarnedOf) {
-    const std::string face = " ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"textures/af/floor\" 0 0 0\n";
-    const auto brush = [&](const std::vector<std::string>& planes) {
-        std::string text = "{\n brushDef3\n {\n";
-        for (const std::string& p : planes) text += "  ( " + p + " )" + face;
-        return text + " }\n}\n";
-    };
     const fs::path map = scratch("wall.map");
-    std::ofstream(map) << "Version 2\n{\n\"classname\" \"worldspawn\"\n"
-                       << brush({"0 0 -1 -16", "0 0 1 0", "0 -1 0 -512", "1 0 0 -512", "0 1 0 -512", "-1 0 0 -512"})
-                       << brush({"0 0 -1 0", "0 0 1 -80", "0 -1 0 -64", "1 0 0 -100", "0 1 0 -64", "-1 0 0 2"}) << "}\n";
+    std::ofstream(map) << test::floorBesideWallMap();
     SessionConsole c;
     ASSERT_TRUE(c.run("map " + map.string() + "; spawn ragdoll_humanoid").ok()) << c.errors;
     const World& world = c.session.world();

@@ -3,6 +3,7 @@
 
 #include "af/text/md5.h"
 
+#include "text/map_text.h"
 #include "tool_run.h"
 
 #include <gtest/gtest.h>
@@ -261,16 +262,8 @@ TEST(AfSim, ALaterRootReplacesTheFigureOfAnEarlierOne) {
 // it starts whole and lands with its joints closed (started inside, the projection would push
 // the bodies out of the wall one by one and open the joints by units).
 TEST(AfSim, AFigureThatWouldStartInsideABrushIsLiftedClearOfIt) {
-    const std::string plane = " ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"textures/af/floor\" 0 0 0\n";
-    const auto brush = [&](const std::vector<std::string>& planes) {
-        std::string text = "{\n brushDef3\n {\n";
-        for (const std::string& p : planes) text += "  ( " + p + " )" + plane;
-        return text + " }\n}\n";
-    };
     const std::filesystem::path map = scratch("wall.map");
-    std::ofstream(map) << "Version 2\n{\n\"classname\" \"worldspawn\"\n"
-                       << brush({"0 0 -1 -16", "0 0 1 0", "0 -1 0 -512", "1 0 0 -512", "0 1 0 -512", "-1 0 0 -512"})
-                       << brush({"0 0 -1 0", "0 0 1 -80", "0 -1 0 -64", "1 0 0 -100", "0 1 0 -64", "-1 0 0 2"}) << "}\n";
+    std::ofstream(map) << af::test::floorBesideWallMap();
     const SimRun run = afSim("--map " + map.string() + " --seconds 4 --json");
     ASSERT_EQ(run.status, 0) << run.out;
     const nlohmann::json j = nlohmann::json::parse(run.out);
