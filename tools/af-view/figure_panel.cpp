@@ -132,13 +132,16 @@ void FigurePanel::draw(console::CommandSystem& console, const console::Session& 
                     for (const FigureConstraint& c : world.definition(id).constraints) constraintOrder_.push_back(c.name);
                 }
         }
+        // Drawn from the panel's copy: a field's command respawns the figure and replaces the
+        // session's decl while the rest of the item is still being drawn.
+        const DeclAF& shown = checkedDecl_;
         drawWarnings(Kind::None, -1);
-        drawItems(*decl);
+        drawItems(shown);
         ImGui::Separator();
         if (kind_ == Kind::Body)
-            if (const AFBody* b = decl->findBody(item_)) drawBody(console, *b);
+            if (const AFBody* b = shown.findBody(item_)) drawBody(console, *b);
         if (kind_ == Kind::Constraint)
-            if (const AFConstraint* c = decl->findConstraint(item_)) drawConstraint(console, *c);
+            if (const AFConstraint* c = shown.findConstraint(item_)) drawConstraint(console, *c);
     }
     ImGui::End();
 }
@@ -167,7 +170,7 @@ void FigurePanel::drawItems(const DeclAF& decl) {
     };
     const auto list = [&](const char* title, Kind kind, const std::vector<std::string>& names) {
         ImGui::TextUnformatted(title);
-        if (!ImGui::BeginListBox(title, {-1, ImGui::GetTextLineHeightWithSpacing() * std::min<float>(8, float(names.size()) + 0.5f)}))
+        if (!ImGui::BeginListBox((std::string("##") + title).c_str(), {-1, ImGui::GetTextLineHeightWithSpacing() * std::min<float>(8, float(names.size()) + 0.5f)}))
             return;
         for (const std::string& name : names) {
             const int w = warned(kind, name);

@@ -36,8 +36,8 @@ private:
     Kind kind_ = Kind::None;
     std::string item_;  // the body's or constraint's name
     std::string key_, value_;  // the free key line
-    // The checks of the last decl drawn, recomputed when the decl changes (each costs a few
-    // thousand point tests per constraint: too many for every frame).
+    // The decl drawn, and its checks, recomputed when the session's decl changes (each costs a
+    // few thousand point tests per constraint: too many for every frame).
     DeclAF checkedDecl_;
     std::string checkedEntity_;
     std::vector<FigureWarning> warnings_;
