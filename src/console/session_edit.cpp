@@ -101,17 +101,6 @@ std::string firstError(const std::vector<Diagnostic>& diagnostics) {
     return "refused";
 }
 
-// Whether the warning is about the item, or (for a body) about a constraint the body is in: a
-// body's mass shows across its joints.
-bool concerns(const Figure& figure, const FigureWarning& w, bool body, int index) {
-    using Subject = FigureWarning::Subject;
-    if (!body) return w.subject == Subject::Constraint && w.index == index;
-    if (w.subject == Subject::Body) return w.index == index;
-    if (w.subject != Subject::Constraint) return false;
-    const FigureConstraint& c = figure.constraints[std::size_t(w.index)];
-    return c.body1 == index || c.body2 == index;
-}
-
 // What editBody and editConstraint share: find the item, add the key's line, parse, check, build,
 // and only then take the new decl and respawn.
 Status editItem(State& s, bool body, const CommandArgs& a, const Output& out) {
@@ -139,8 +128,11 @@ Status editItem(State& s, bool body, const CommandArgs& a, const Output& out) {
     const std::string& key = a.argv(3);
     if (key.empty() || !std::all_of(key.begin(), key.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)); }))
         return Status::failure(command + ": the key must be one word of the .af file, found '" + key + "'");
-    const std::string line = key + " " + afValueText(key, std::vector<std::string>(a.words().begin() + 4, a.words().end()));
-    const std::string label = command + ": " + e->name + " " + itemName + ": " + line + ": ";
+    const std::vector<std::string> words(a.words().begin() + 4, a.words().end());
+    const std::string line = key + " " + afValueText(key, words);
+    std::string typed = key;  // as the user wrote it, for messages
+    for (const std::string& w : words) typed += " " + w;
+    const std::string label = command + ": " + e->name + " " + itemName + ": " + typed + ": ";
 
     // The key's line last in the item's block of the canonical text: the parser takes the last
     // value a key is given.
@@ -168,16 +160,17 @@ Status editItem(State& s, bool body, const CommandArgs& a, const Output& out) {
     const FigureResult built = buildFigure(candidate);
     if (!built.ok()) return Status::failure(label + firstError(built.diagnostics));
 
+    // The warnings the edit brings (the figure checks, a joint the skeleton lacks, ...): those of
+    // the new build that the old one did not give.
+    std::vector<std::string> before;
+    for (const Diagnostic& d : buildFigure(r).diagnostics) before.push_back(d.message);
     s.editedDecls[decl.name] = *next;
     const int respawned = s.respawn(false, out);
-    out.info("edited " + e->name + " " + itemName + ": " + line + " (" + std::to_string(respawned) + " ragdoll" +
+    out.info("edited " + e->name + " " + itemName + ": " + typed + " (" + std::to_string(respawned) + " ragdoll" +
              (respawned == 1 ? "" : "s") + " respawned)");
-    const Figure& figure = *built.figure;
-    int inFigure = body ? figure.findBody(next->bodies[std::size_t(index)].name) : -1;
-    for (std::size_t i = 0; !body && i < figure.constraints.size(); ++i)
-        if (figure.constraints[i].name == next->constraints[std::size_t(index)].name) inFigure = int(i);
-    for (const FigureWarning& w : figureWarnings(figure))
-        if (concerns(figure, w, body, inFigure)) out.info("warning: " + w.message);
+    for (const Diagnostic& d : built.diagnostics)
+        if (d.severity == Severity::Warning && std::find(before.begin(), before.end(), d.message) == before.end())
+            out.info("warning: " + d.message);
     return Status::success();
 }
 

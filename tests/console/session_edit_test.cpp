@@ -160,7 +160,7 @@ TEST(SessionEdit, BadEditsPrintOneErrorAndChangeNothing) {
         {"editBody af_lamp_1 shade densty 1", "densty 1"},
         {"editBody af_lamp_1 shade model sphere( 3 )", "model sphere"},
         {"editBody af_lamp_1 shade density 1 } body \"x\" {", "shade: density 1 } body x {: "},
-        {"editConstraint af_lamp_1 shade limit 0, wide, 0", "limit 0 , wide , 0"},
+        {"editConstraint af_lamp_1 shade limit 0, wide, 0", "limit 0, wide, 0: "},
         {"editConstraint af_lamp_1 shade axis ( 0, 0, 0 )", "axis"},
         {"saveAF af_lamp_1 /nonexistent-dir/lamp.af", "saveAF"},
     };
@@ -195,12 +195,19 @@ TEST(SessionEdit, AnEditThatMakesAMassRatioTooLargeIsWarnedOfBesideTheJoint) {
     EXPECT_EQ(subjects(), (Expected{{Subject::Body, "cable"}}));
     ASSERT_TRUE(c.run("editBody af_lamp_1 shade density 20").ok()) << c.errors;
     EXPECT_NE(c.info.find("warning: hinge \"shade\" joins \"shade\" and \"cable\", whose masses differ by"), std::string::npos) << c.info;
-    EXPECT_EQ(c.info.find("warning: body \"cable\""), std::string::npos) << "the edit prints what concerns the shade: " << c.info;
+    EXPECT_EQ(c.info.find("warning: body \"cable\""), std::string::npos) << "the edit prints the warnings it brings: " << c.info;
     EXPECT_EQ(subjects(), (Expected{{Subject::Body, "cable"}, {Subject::Constraint, "shade"}}));
     ASSERT_TRUE(c.run("checkFigure af_lamp_1").ok());
     EXPECT_NE(c.info.find("af_lamp_1: 2 warnings"), std::string::npos) << c.info;
     ASSERT_TRUE(c.run("editBody af_lamp_1 shade density 0.025").ok()) << c.errors;
     EXPECT_EQ(subjects(), (Expected{{Subject::Body, "cable"}})) << "updated after each edit";
+}
+
+TEST(SessionEdit, AJointTheSkeletonLacksIsWarnedOfByTheEdit) {
+    EditConsole c;
+    ASSERT_TRUE(c.run("spawn af_lamp\neditBody af_lamp_1 shade joint shadow").ok()) << c.errors;
+    EXPECT_NE(c.info.find("warning: body \"shade\": joint \"shadow\" is not in the skeleton"), std::string::npos) << c.info;
+    EXPECT_EQ(c.session.decl("af_lamp_1")->findBody("shade")->joint, "shadow") << "quoted again for the file";
 }
 
 TEST(SessionEdit, RespawnRagdollsPutsEveryFigureBackAtItsSpawnPose) {
