@@ -105,6 +105,30 @@ TEST(SessionEdit, SaveAFIntoAnotherFileAddsTheDeclAndLeavesTheSourceAlone) {
     EXPECT_FLOAT_EQ(float(lampAsFileSays(out).findBody("shade")->density), 0.05f);
 }
 
+// saveAF goes through the atomic writer: a save that dies part way leaves the .af as it was, and a
+// file that does not parse is not overwritten.
+TEST(SessionEdit, ASaveAFCutShortOrOntoABrokenFileLeavesTheFileAsItWas) {
+    const fs::path root = editableMod("cut");
+    const fs::path af = root / "af" / "lamp.af";
+    const std::string before = readText(af);
+    EditConsole c({root});
+    ASSERT_TRUE(c.run("spawn af_lamp\neditBody af_lamp_1 shade density 0.05").ok()) << c.errors;
+    for (const WriteStage stage : {WriteStage::Opened, WriteStage::Wrote, WriteStage::Synced, WriteStage::Renaming}) {
+        c.session.setWriteFaultHook([stage](WriteStage at, std::size_t) { return at == stage ? WriteFault::Crash : WriteFault::None; });
+        EXPECT_FALSE(c.run("saveAF af_lamp_1").ok());
+        EXPECT_EQ(readText(af), before);
+    }
+    c.session.setWriteFaultHook({});
+    const fs::path broken = editScratch("broken.af");
+    std::ofstream(broken, std::ios::binary) << "articulatedFigure lamp {\n  settings {\n";
+    c.errors.clear();
+    EXPECT_FALSE(c.run("saveAF af_lamp_1 " + broken.string()).ok());
+    EXPECT_NE(c.errors.find("does not read cleanly, so it is not overwritten"), std::string::npos) << c.errors;
+    EXPECT_EQ(readText(broken), "articulatedFigure lamp {\n  settings {\n");
+    ASSERT_TRUE(c.run("saveAF af_lamp_1").ok()) << c.errors;
+    EXPECT_NE(readText(af), before);
+}
+
 TEST(SessionEdit, ADensityEditRespawnsEveryLampAtItsSpawnPlacementWithTheNewMass) {
     EditConsole c;
     ASSERT_TRUE(c.run("spawn af_lamp origin \"0 0 0\"\nspawn af_lamp origin \"40 0 0\"").ok()) << c.errors;
