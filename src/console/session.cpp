@@ -60,6 +60,19 @@ std::string Session::entityName(FigureId figure) const {
         if (e.figure == figure) return e.name;
     return {};
 }
+std::vector<std::string> Session::entityNames() const {
+    std::vector<std::string> names;
+    for (const Entity& e : state_->entities) names.push_back(e.name);
+    return names;
+}
+const DeclAF* Session::decl(std::string_view entity) const {
+    const Entity* e = state_->find(entity);
+    return e ? &e->source.decl : nullptr;
+}
+std::vector<FigureWarning> Session::warnings(std::string_view entity) const {
+    const Entity* e = state_->find(entity);
+    return e ? figureWarnings(state_->world.definition(e->figure)) : std::vector<FigureWarning>{};
+}
 std::vector<std::string> Session::bodyNames(std::string_view entity) const {
     std::vector<std::string> names;
     for (const Entity& e : state_->entities)
@@ -82,6 +95,7 @@ Entity* Session::State::find(std::string_view name) {
         if (equalsIgnoreCase(e.name, name)) return &e;
     return nullptr;
 }
+const Entity* Session::State::find(std::string_view name) const { return const_cast<State*>(this)->find(name); }
 
 Real Session::State::groundHeight(Real x, Real y) const {
     const std::optional<Real> top = highestTopAt(statics, x, y);
@@ -99,17 +113,24 @@ std::string Session::State::unusedName(const std::string& entityDef) const {
     }
 }
 
+AFResources Session::State::resources(const std::string& entityDef) const {
+    AFResources found = index->resolveAFEntity(entityDef);
+    if (found.figure)
+        if (const auto edited = editedDecls.find(found.figure->decl.name); edited != editedDecls.end())
+            found.figure = std::make_shared<const FigureEntry>(FigureEntry{edited->second, found.figure->file});
+    return found;
+}
+
 std::shared_ptr<const Figure> Session::State::definition(const std::string& entityDef, std::string& error,
-                                                        std::string* declText) {
-    const AFResources found = index->resolveAFEntity(entityDef);
+                                                        DeclSource* source) {
+    const AFResources found = resources(entityDef);
     if (!found.ok()) {
         error = found.formatDiagnostics();
         if (!error.empty() && error.back() == '\n') error.pop_back();
         return nullptr;
     }
-    const std::string text = writeDecl(found.figure->decl);
-    if (declText) *declText = text;
-    // Built once per entityDef and shared by its entities; reloadDecls empties the cache.
+    if (source) *source = {found.figure->decl, found.figure->file, writeDecl(found.figure->decl)};
+    // Built once per entityDef and shared by its entities; reloadDecls and edits empty the cache.
     const std::string key = toLower(entityDef);
     if (const auto it = definitions.find(key); it != definitions.end()) return it->second;
     FigureResult built = buildFigure(found);
@@ -169,8 +190,8 @@ std::optional<std::string> Session::State::loadMap(const std::filesystem::path& 
 std::optional<std::string> Session::State::spawn(const std::string& entityDef, const MapKeyValues& keys, const Output& out,
                                                  const MapEntity* saved) {
     std::string error;
-    std::string declText;
-    auto figure = definition(entityDef, error, &declText);
+    DeclSource source;
+    auto figure = definition(entityDef, error, &source);
     if (!figure) return error;
 
     RigidPose placement;
@@ -223,7 +244,7 @@ std::optional<std::string> Session::State::spawn(const std::string& entityDef, c
     if (poses) world.setPose(id, *poses);
     // docs/figures.md §3.9: a map's figure is put to rest and woken unless it has `nodrop`.
     if (saved && keys.value("nodrop") == "1") world.putToRest(id);
-    entities.push_back({name, entityDef, id, placement, declText});
+    entities.push_back({name, entityDef, id, placement, std::move(source)});
     selected = name;
     if (!saved) out.info("spawned " + name);
     return std::nullopt;
@@ -274,25 +295,33 @@ std::optional<std::string> Session::State::save(const std::filesystem::path& fil
 }
 
 // Re-reads every decl; an entity whose .af decl now reads differently is spawned anew, where it
-// was first spawned, with the new figure. Decls that no longer load leave their entities as they are.
+// was first spawned, with the new figure. Edits not saved are dropped: the files say again.
 void Session::State::reload(const Output& out) {
     index = std::make_unique<ResourceIndex>(roots);
+    editedDecls.clear();
+    const int respawned = respawn(false, out);
+    out.info("reloaded decls: " + std::to_string(respawned) + " ragdoll" + (respawned == 1 ? "" : "s") + " respawned");
+}
+
+// Decls that no longer load leave their entities as they are.
+int Session::State::respawn(bool all, const Output& out) {
     definitions.clear();
     int respawned = 0;
     for (Entity& e : entities) {
-        std::string error, text;
-        auto figure = definition(e.entityDef, error, &text);
+        std::string error;
+        DeclSource source;
+        auto figure = definition(e.entityDef, error, &source);
         if (!figure) {
             out.error(e.name + ": " + error);
             continue;
         }
-        if (text == e.declText) continue;
+        if (!all && source.text == e.source.text) continue;
         world.remove(e.figure);
         e.figure = world.spawn(figure, e.placement);
-        e.declText = text;
+        e.source = std::move(source);
         ++respawned;
     }
-    out.info("reloaded decls: " + std::to_string(respawned) + " ragdoll" + (respawned == 1 ? "" : "s") + " respawned");
+    return respawned;
 }
 
 }  // namespace af::console

@@ -89,6 +89,7 @@ void registerSessionCommands(State& s, CommandSystem& console) {
     damping.onChange = [&s](const CVar& v) { s.dragDamping = v.asReal(); };
     console.addCVar(std::move(damping));
     registerSimulationCvars(s, console);
+    registerEditCommands(s, console);
     s.show.attach(console);
     console.addCommand({"map", "FILE", "load a .map: its brushes and its AF entities, posed by their saved body keys", 1, 1,
                         [&s](const CommandArgs& a, const Output& out) { return failure(s.loadMap(a.argv(1), out)); }, {}});

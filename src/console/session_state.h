@@ -15,13 +15,20 @@
 
 namespace af::console {
 
+// The .af decl an entity was built from: as read, or as edited (session_edit.cpp).
+struct DeclSource {
+    DeclAF decl;
+    std::string file;  // the .af file it was read from (saveAF writes there)
+    std::string text;  // as the canonical writer spells it, to see edits
+};
+
 // An AF entity: a figure instance with the name and keys it was spawned with.
 struct Entity {
     std::string name;
     std::string entityDef;
     FigureId figure;
-    RigidPose placement;  // where it was spawned (reloadDecls respawns it there)
-    std::string declText;  // its .af decl as the canonical writer spells it, to see edits
+    RigidPose placement;  // where it was spawned (reloadDecls and edits respawn it there)
+    DeclSource source;
 };
 
 struct Session::State {
@@ -36,6 +43,9 @@ struct Session::State {
     std::vector<Entity> entities;
     std::string selected;  // the entity last spawned or dragged (saveSelected, deleteSelected)
     std::map<std::string, std::shared_ptr<const Figure>> definitions;  // by entityDef, lower case
+    // Decls edited by editBody/editConstraint and not yet re-read, by decl name: they stand in for
+    // the files' decls until reloadDecls (docs/console-editing.md).
+    std::map<std::string, DeclAF> editedDecls;
     WriteFaultHook writeHook;
     Real dragDamping = 0.5;
     ShowReport show;  // the af_show* cvars: steps are timed and described through it
@@ -46,11 +56,17 @@ struct Session::State {
                                      const MapEntity* saved = nullptr);
     std::optional<std::string> save(const std::filesystem::path& file, bool selectedOnly, const Output& out);
     void reload(const Output& out);
+    // Respawns, at its spawn placement, every entity whose decl now reads differently (all of
+    // them with `all`); the number respawned.
+    int respawn(bool all, const Output& out);
     void remove(const std::string& name);
 
     Entity* find(std::string_view name);
+    const Entity* find(std::string_view name) const;
     void resetWorld();
-    std::shared_ptr<const Figure> definition(const std::string& entityDef, std::string& error, std::string* declText);
+    // The entityDef's resources, an edited decl standing in for the file's.
+    AFResources resources(const std::string& entityDef) const;
+    std::shared_ptr<const Figure> definition(const std::string& entityDef, std::string& error, DeclSource* source);
     Real groundHeight(Real x, Real y) const;
     std::string unusedName(const std::string& entityDef) const;
 };
@@ -59,5 +75,7 @@ struct Session::State {
 // among them (session_cvars.cpp).
 void registerSessionCommands(Session::State& state, CommandSystem& console);
 void registerSimulationCvars(Session::State& state, CommandSystem& console);
+// editBody, editConstraint, saveAF, respawnRagdolls, checkFigure (session_edit_commands.cpp).
+void registerEditCommands(Session::State& state, CommandSystem& console);
 
 }  // namespace af::console

@@ -77,32 +77,36 @@ std::vector<std::vector<int>> bodyTrees(const Figure& figure) {
     return trees;
 }
 
-void checkFigure(FigureBuildContext& context, const Figure& figure) {
-    for (const FigureBody& b : figure.bodies) {
+std::vector<FigureWarning> figureWarnings(const Figure& figure) {
+    using Subject = FigureWarning::Subject;
+    std::vector<FigureWarning> out;
+    for (std::size_t i = 0; i < figure.bodies.size(); ++i) {
+        const FigureBody& b = figure.bodies[i];
         const Vec3 m = principalInertia(b.inertia).moments;
         if (m[0] > 0 && m[2] / m[0] > kMaxInertiaRatio)
-            context.diagnostics.warning(b.where, "body \"" + b.name + "\": its principal moments of inertia differ by " +
-                                                     ratioText(m[2] / m[0]) +
-                                                     ":1 (more than 20:1); consider inertiaScale or a stouter shape");
+            out.push_back({Subject::Body, int(i),
+                           "body \"" + b.name + "\": its principal moments of inertia differ by " + ratioText(m[2] / m[0]) +
+                               ":1 (more than 20:1); consider inertiaScale or a stouter shape"});
     }
 
-    for (const FigureConstraint& c : figure.constraints) {
+    for (std::size_t i = 0; i < figure.constraints.size(); ++i) {
+        const FigureConstraint& c = figure.constraints[i];
         if (c.body1 < 0 || c.body2 < 0) continue;
         const FigureBody& a = figure.bodies[static_cast<std::size_t>(c.body1)];
         const FigureBody& b = figure.bodies[static_cast<std::size_t>(c.body2)];
         const std::string label = std::string(toString(c.type)) + " \"" + c.name + "\"";
         const Real ratio = std::max(a.mass, b.mass) / std::min(a.mass, b.mass);
         if (ratio > kMaxMassRatio)
-            context.diagnostics.warning(c.where, label + " joins \"" + a.name + "\" and \"" + b.name +
-                                                     "\", whose masses differ by " + ratioText(ratio) +
-                                                     ":1 (more than 20:1)");
+            out.push_back({Subject::Constraint, int(i),
+                           label + " joins \"" + a.name + "\" and \"" + b.name + "\", whose masses differ by " + ratioText(ratio) +
+                               ":1 (more than 20:1)"});
         if (c.type == ConstraintType::Spring) continue;
         const FigureBody& smaller = a.volume <= b.volume ? a : b;
         const FigureBody& larger = a.volume <= b.volume ? b : a;
         const Real overlap = overlapFraction(smaller, larger);
         if (overlap > kMaxOverlapFraction)
-            context.diagnostics.warning(c.where, label + ": \"" + smaller.name + "\" starts " +
-                                                     ratioText(100 * overlap) + "% inside \"" + larger.name + "\"");
+            out.push_back({Subject::Constraint, int(i),
+                           label + ": \"" + smaller.name + "\" starts " + ratioText(100 * overlap) + "% inside \"" + larger.name + "\""});
     }
 
     const std::vector<std::vector<int>> trees = bodyTrees(figure);
@@ -110,9 +114,19 @@ void checkFigure(FigureBuildContext& context, const Figure& figure) {
         std::string list;
         for (const std::vector<int>& t : trees)
             list += (list.empty() ? "\"" : ", \"") + figure.bodies[static_cast<std::size_t>(t.front())].name + "\"";
-        context.diagnostics.warning(context.decl.where, "the bodies form " + std::to_string(trees.size()) +
-                                                            " separate trees (containing " + list +
-                                                            "); constraints join them into one in most figures");
+        out.push_back({Subject::Figure, -1,
+                       "the bodies form " + std::to_string(trees.size()) + " separate trees (containing " + list +
+                           "); constraints join them into one in most figures"});
+    }
+    return out;
+}
+
+void checkFigure(FigureBuildContext& context, const Figure& figure) {
+    for (const FigureWarning& w : figureWarnings(figure)) {
+        const SourceLocation where = w.subject == FigureWarning::Subject::Body         ? figure.bodies[std::size_t(w.index)].where
+                                     : w.subject == FigureWarning::Subject::Constraint ? figure.constraints[std::size_t(w.index)].where
+                                                                                       : context.decl.where;
+        context.diagnostics.warning(where, w.message);
     }
 }
 

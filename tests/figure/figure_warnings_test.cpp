@@ -90,6 +90,29 @@ TEST(FigureWarnings, BodiesInSeparateTrees) {
     EXPECT_NE(text.find("\"lhand\""), std::string::npos) << text;
 }
 
+// The same checks, as data: each warning names the body or constraint it is about, so that an
+// editor can put it beside that item; the clean humanoid has none.
+TEST(FigureWarnings, EachWarningNamesTheBodyOrConstraintItConcerns) {
+    const FigureResult clean = buildFigure(test::humanoidDecl(), test::humanoidPose(), "humanoid.af");
+    ASSERT_TRUE(clean.ok());
+    EXPECT_TRUE(figureWarnings(*clean.figure).empty());
+
+    DeclAF d = test::humanoidDecl();
+    body(d, "lhand").density *= 200;
+    body(d, "chest").inertiaScale = {40, 0, 0, 0, 1, 0, 0, 0, 1};
+    const FigureResult r = buildFigure(d, test::humanoidPose(), "broken.af");
+    ASSERT_TRUE(r.ok());
+    const Figure& f = *r.figure;
+    const std::vector<FigureWarning> warnings = figureWarnings(f);
+    ASSERT_EQ(warnings.size(), 2u);
+    EXPECT_EQ(warnings[0].subject, FigureWarning::Subject::Body);
+    EXPECT_EQ(f.bodies[std::size_t(warnings[0].index)].name, "chest");
+    EXPECT_EQ(warnings[1].subject, FigureWarning::Subject::Constraint);
+    EXPECT_EQ(f.constraints[std::size_t(warnings[1].index)].name, "lwrist");
+    // buildFigure reports the same messages.
+    for (const FigureWarning& w : warnings) EXPECT_NE(r.formatDiagnostics().find(w.message), std::string::npos) << w.message;
+}
+
 TEST(FigureWarnings, JointNoBodyContains) {
     DeclAF d = test::humanoidDecl();
     body(d, "lhand").containedJoints = "lhand";

@@ -4,6 +4,7 @@
 // tools/af-view/orbit_camera.h written out again here), and a scripted mouse drag must pull the
 // grabbed body toward the cursor.
 
+#include "af/text/af_parser.h"
 #include "console/command_system.h"
 #include "console/session.h"
 #include "tool_run.h"
@@ -49,8 +50,9 @@ struct ViewRun {
     std::filesystem::path picture;
 };
 
-// af-view --exec (the script) --screenshot, in a virtual X server of its own.
-ViewRun afView(const std::string& script) {
+// af-view --exec (the script) --screenshot, in a virtual X server of its own; `options` are more
+// of af-view's options (--panels).
+ViewRun afView(const std::string& script, const std::string& options = "") {
     const std::filesystem::path dir = scratchDir();
     std::ofstream(dir / "script.cfg") << script;
     ViewRun run;
@@ -64,7 +66,7 @@ ViewRun afView(const std::string& script) {
     const std::string server = "xvfb-run -a -n " + std::to_string(100 + getpid() % 30000) + " -s '-screen 0 1024x768x24' ";
     const std::string command = "ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" " + server + AF_VIEW_PATH + " --root '" + AF_SOURCE_DIR +
                                 "' --exec '" + (dir / "script.cfg").string() + "' --screenshot '" + run.picture.string() +
-                                "' --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " > '" + (dir / "out").string() +
+                                "' --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " " + options + " > '" + (dir / "out").string() +
                                 "' 2> '" + (dir / "err").string() + "'";
     const int status = std::system(command.c_str());
     run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -97,11 +99,12 @@ Bodies bodiesAfter(const std::string& script) {
 struct Camera {
     Vec3 eye, target;
     Real fovY = 30;
-    Eigen::Vector2d project(const Vec3& p) const {
+    // In a view `height` pixels high (less than the window's with --panels).
+    Eigen::Vector2d project(const Vec3& p, int height = kHeight) const {
         const Vec3 forward = (target - eye).normalized(), right = forward.cross(Vec3::UnitZ()).normalized(), up = right.cross(forward);
         const Vec3 d = p - eye;
-        const Real f = 1 / std::tan(fovY * std::numbers::pi / 360), aspect = Real(kWidth) / kHeight;
-        return {kWidth / 2.0 * (1 + f / aspect * d.dot(right) / d.dot(forward)), kHeight / 2.0 * (1 - f * d.dot(up) / d.dot(forward))};
+        const Real f = 1 / std::tan(fovY * std::numbers::pi / 360), aspect = Real(kWidth) / height;
+        return {kWidth / 2.0 * (1 + f / aspect * d.dot(right) / d.dot(forward)), height / 2.0 * (1 - f * d.dot(up) / d.dot(forward))};
     }
     std::string command() const {
         std::ostringstream s;
@@ -152,8 +155,8 @@ private:
 
 // Runs af-view on `script` into `run`, or skips the test when the virtual X server cannot start
 // here (a sandbox without the sockets it needs): that says nothing about the viewer.
-#define RUN_AF_VIEW(run, script)                                                                           \
-    const ViewRun run = afView(script);                                                                     \
+#define RUN_AF_VIEW(run, ...)                                                                              \
+    const ViewRun run = afView(__VA_ARGS__);                                                                \
     if (run.err.find("Xvfb failed to start") != std::string::npos) GTEST_SKIP() << "Xvfb does not start here: " << run.err
 
 const Camera kCamera{Vec3(130, -170, 110), Vec3(0, 0, 30), 30};
@@ -268,6 +271,92 @@ TEST(AfView, PressingOnNothingGrabsNothing) {
     RUN_AF_VIEW(run, kSpawn + kCamera.command() + "view_mouseDown 5 5\n");
     EXPECT_EQ(run.status, 1) << run.out << run.err;
     EXPECT_NE(run.err.find("view_mouseDown: no body under 5 5"), std::string::npos) << run.err;
+}
+
+// The lamp's shade in world space after `script`, run in-process: its vertices and its centre.
+struct Shape {
+    std::vector<Vec3> vertices;
+    Vec3 centre;
+};
+Shape shadeAfter(const std::string& script) {
+    af::console::CommandSystem console;
+    af::console::Session session({AF_SOURCE_DIR}, console);
+    EXPECT_TRUE(console.execute(script).ok());
+    const af::FigureId f = session.world().figureIds().front();
+    const af::Figure& figure = session.world().definition(f);
+    const int shade = figure.findBody("shade");
+    const af::RigidPose pose = session.world().bodyPoses(f)[std::size_t(shade)];
+    Shape out{{}, pose.position};
+    for (const Vec3& v : figure.bodies[std::size_t(shade)].shape.vertices) out.vertices.push_back(pose.apply(v));
+    return out;
+}
+
+int colouredPixels(const Picture& p) {
+    int n = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) n += p.figureAt(x, y);
+    return n;
+}
+
+// Looking along +x at the lamp: the shade's rim is as wide on screen as its radius, tilt or none.
+const Camera kLampCamera{Vec3(-150, 0, 62), Vec3(9, 0, 60), 30};
+const std::string kLamp = "spawn af_lamp origin \"0 0 0\"\n";
+const std::string kWideShade = "editBody af_lamp_1 shade model \"cone( ( -16, -16, -5 ), ( 16, 16, 0 ), 12 )\"\n";
+
+// A script doubles the shade's width: the picture shows the shade where only the wide one
+// reaches, and saveAF writes the new shape.
+TEST(AfView, AShadeMadeWiderByAScriptIsDrawnWiderAndSaved) {
+    SKIP_WITHOUT_XVFB();
+    const std::filesystem::path saved = scratchDir() / "lamp.af";
+    RUN_AF_VIEW(before, kLamp + kNoSkeleton + kLampCamera.command());
+    ASSERT_EQ(before.status, 0) << before.out << before.err;
+    const Picture narrow(before.picture);  // read before the second run writes the same file
+    ASSERT_TRUE(narrow.ok());
+    RUN_AF_VIEW(after, kLamp + kNoSkeleton + kLampCamera.command() + kWideShade + "saveAF af_lamp_1 \"" + saved.string() + "\"\n");
+    ASSERT_EQ(after.status, 0) << after.out << after.err;
+    EXPECT_NE(after.out.find("1 ragdoll respawned"), std::string::npos) << after.out;
+    const Picture wide(after.picture);
+    ASSERT_TRUE(wide.ok());
+
+    // A point of the wide shade, 85 % of the way from its centre to its rim vertex farthest to the
+    // right on screen; the narrow shade's projected corners all lie well left of it.
+    const Shape shape = shadeAfter(kLamp + kWideShade), old = shadeAfter(kLamp);
+    const Vec3 right = (kLampCamera.target - kLampCamera.eye).cross(Vec3::UnitZ()).normalized();
+    Vec3 rim = shape.vertices.front();
+    for (const Vec3& v : shape.vertices)
+        if ((v - shape.centre).dot(right) > (rim - shape.centre).dot(right)) rim = v;
+    const Eigen::Vector2d inWide = kLampCamera.project(shape.centre + 0.85 * (rim - shape.centre));
+    double narrowRightmost = 0;
+    for (const Vec3& v : old.vertices) narrowRightmost = std::max(narrowRightmost, kLampCamera.project(v).x());
+    ASSERT_GT(inWide.x(), narrowRightmost + 10) << "the test's point must be beyond the narrow shade";
+
+    EXPECT_TRUE(wide.figureNear(inWide, 1)) << "the wide shade is drawn at " << inWide.transpose();
+    EXPECT_FALSE(narrow.figureNear(inWide, 2)) << "the narrow shade is not drawn at " << inWide.transpose();
+    EXPECT_GT(colouredPixels(wide), 2 * colouredPixels(narrow)) << "four times the rim's area, seen from the side: twice the picture's";
+
+    const af::AFParseResult read = af::loadAFFile(saved.string());
+    ASSERT_TRUE(read.ok()) << read.diagnostics.formatAll();
+    ASSERT_EQ(read.file.decls.size(), 1u);
+    const af::AFBody* body = read.file.decls[0].findBody("shade");
+    ASSERT_NE(body, nullptr);
+    EXPECT_EQ(body->shape.type, af::ShapeType::Cone);
+    EXPECT_EQ(body->shape.v1.coordinates, (af::Real3{-16, -16, -5}));
+    EXPECT_EQ(body->shape.v2.coordinates, (af::Real3{16, 16, 0}));
+}
+
+// A press on a body selects it in the figure panel, which draws its fields (--panels).
+TEST(AfView, PressingOnABodySelectsItInTheFigurePanel) {
+    SKIP_WITHOUT_XVFB();
+    // With the panels the console takes 40 % of the window's height below the 3D view (viewer.cpp).
+    const Eigen::Vector2d shade = kLampCamera.project(shadeAfter(kLamp).centre, kHeight - kHeight * 2 / 5);
+    RUN_AF_VIEW(run, kLamp + kLampCamera.command() + "view_selection\nview_mouseDown " + std::to_string(int(shade.x())) + " " +
+                         std::to_string(int(shade.y())) + "\nview_selection\n",
+                "--panels");
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    const std::size_t first = run.out.find("selected ");
+    ASSERT_NE(first, std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("selected af_lamp_1 body shade"), run.out.rfind("selected ")) << run.out;
+    EXPECT_EQ(run.out.find("selected af_lamp_1 body shade"), run.out.find("selected ", first + 1)) << "not before the press: " << run.out;
 }
 
 }  // namespace

@@ -41,6 +41,16 @@ void OrbitCamera::pan(Real dxPixels, Real dyPixels, int height) {
     target_ += unitsPerPixel * (-dxPixels * right() + dyPixels * up());
 }
 
+void OrbitCamera::look(Real dxPixels, Real dyPixels) {
+    const Vec3 eyeBefore = eye();
+    rotate(dxPixels, dyPixels);
+    target_ = eyeBefore + distance_ * forward();
+}
+
+void OrbitCamera::fly(Real forwardUnits, Real rightUnits, Real upUnits) {
+    target_ += forwardUnits * forward() + rightUnits * right() + upUnits * Vec3::UnitZ();
+}
+
 void OrbitCamera::zoom(Real steps) { distance_ = std::clamp(distance_ * std::pow(0.88, steps), Real(1), Real(1e6)); }
 
 Eigen::Matrix4f OrbitCamera::viewMatrix() const {

@@ -1,6 +1,8 @@
 #pragma once
 // The viewer's camera: it orbits a target point (yaw about world +Z, pitch above the horizon) at
-// a distance, with world +Z up on screen. Perspective, vertical field of view in degrees.
+// a distance, with world +Z up on screen. Perspective, vertical field of view in degrees. The fly
+// mode uses the same camera the other way round: it turns about the eye (look) and carries eye
+// and target together (fly), so switching modes keeps the picture and view_camera serves both.
 //
 // Pixels: x to the right, y down, origin at the top-left corner of the view; pixel (i, j) covers
 // [i, i+1) × [j, j+1). A view point (right, up, depth) shows at
@@ -35,6 +37,12 @@ public:
     void pan(Real dxPixels, Real dyPixels, int height);
     // Wheel steps: positive comes closer.
     void zoom(Real steps);
+    // Fly mode: mouse look about the eye (pixels, as rotate), and a move of the eye and the target
+    // by `forward` units along the view, `right` to the right and `up` along world +Z.
+    void look(Real dxPixels, Real dyPixels);
+    void fly(Real forward, Real right, Real up);
+    // The distance from the eye to the target: the fly mode's speeds scale with it.
+    Real distance() const { return distance_; }
 
     // Column-major matrices for OpenGL, for a view of aspect width / height.
     Eigen::Matrix4f viewMatrix() const;

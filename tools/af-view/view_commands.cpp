@@ -28,6 +28,9 @@ void Viewer::registerViewCommands() {
     c.addCVar(console::boolCVar("view_skeleton", true, "draw the skeleton the bodies drive"));
     c.addCVar(console::boolCVar("view_contacts", false, "draw the contact points of the last step, with their normals (red)"));
     c.addCVar(console::boolCVar("view_rest", false, "grey out the figures at rest"));
+    c.addCVar(console::boolCVar("view_fly", false,
+                                "fly camera: WASD to move, Q and E down and up, Shift faster, mouse look with the right button held; "
+                                "0: orbit the target"));
     c.addCommand({"view_camera", "[EX EY EZ TX TY TZ [FOVY]]", "print the camera (eye, target, vertical field of view), or place it", 0, 7,
                   [this](const CommandArgs& a, const Output& out) {
                       if (a.argc() == 1) {
@@ -69,8 +72,8 @@ void Viewer::registerViewCommands() {
                   [this, pixel](const CommandArgs& a, const Output&) {
                       const auto p = pixel(a);
                       if (!p) return Status::failure("view_mouseDown: X Y must be numbers");
-                      const Vec3 forward = camera().forward();
-                      if (!drag_->press(scene(), rayAt(p->first, p->second), forward))
+                      camera();
+                      if (!press(rayAt(p->first, p->second)))
                           return Status::failure("view_mouseDown: no body under " + a.argv(1) + " " + a.argv(2));
                       return Status::success();
                   },
@@ -97,6 +100,12 @@ void Viewer::registerViewCommands() {
                       char distance[32];
                       std::snprintf(distance, sizeof distance, "%.3f", (pull->second - pull->first).norm());
                       out.info("drag point " + format(pull->first) + " target " + format(pull->second) + " distance " + distance);
+                      return Status::success();
+                  },
+                  {}});
+    c.addCommand({"view_selection", "", "print what the figure panel has selected: the entity, and a body or constraint", 0, 0,
+                  [this](const CommandArgs&, const Output& out) {
+                      out.info("selected " + figurePanel_.selection());
                       return Status::success();
                   },
                   {}});

@@ -24,6 +24,8 @@ constexpr double kStepsPerSecond = 60;  // Doom's frame; af_timeScale scales eac
 constexpr double kConsoleHeight = 240;  // framebuffer pixels, at most 40 % of the window
 
 constexpr Real kContactNormalLength = 4;  // units
+constexpr Real kFlySpeed = 0.75;  // the fly camera's speed: distances to its target per second
+constexpr float kFigurePanelWidth = 380;  // points
 
 render::Colour brighter(const render::Colour& c) {
     return {std::min(1.0f, c[0] * 1.35f + 0.1f), std::min(1.0f, c[1] * 1.35f + 0.1f), std::min(1.0f, c[2] * 1.35f + 0.1f)};
@@ -175,23 +177,53 @@ ViewMarks Viewer::marks() const {
 void Viewer::handleMouse() {
     const ImGuiIO& io = ImGui::GetIO();
     OrbitCamera& cam = camera();
+    const bool fly = cvarOn("view_fly");
     // ImGui's mouse position is in window coordinates; the view is in framebuffer pixels.
     const float sx = io.DisplayFramebufferScale.x, sy = io.DisplayFramebufferScale.y;
     const Real x = io.MousePos.x * sx, y = io.MousePos.y * sy;
     if (!io.WantCaptureMouse) {
-        if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) orbiting_ = !drag_->press(scene(), rayAt(x, y), cam.forward());
-        if (io.MouseWheel != 0) cam.zoom(io.MouseWheel);
+        if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+            orbiting_ = !press(rayAt(x, y));
+        }
+        if (ImGui::IsMouseClicked(ImGuiMouseButton_Right)) looking_ = fly;
+        if (io.MouseWheel != 0) {
+            if (fly) cam.fly(0.1 * cam.distance() * io.MouseWheel, 0, 0);
+            else cam.zoom(io.MouseWheel);
+        }
     }
     if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
         if (drag_->active() && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) drag_->move(rayAt(x, y));
+        else if (orbiting_ && fly) cam.look(io.MouseDelta.x, io.MouseDelta.y);
         else if (orbiting_) cam.rotate(io.MouseDelta.x, io.MouseDelta.y);
     }
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) {
         drag_->release();
         orbiting_ = false;
     }
-    if (!io.WantCaptureMouse && (ImGui::IsMouseDown(ImGuiMouseButton_Right) || ImGui::IsMouseDown(ImGuiMouseButton_Middle)))
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Right)) looking_ = false;
+    if (looking_) cam.look(io.MouseDelta.x, io.MouseDelta.y);
+    else if (!io.WantCaptureMouse && (ImGui::IsMouseDown(ImGuiMouseButton_Right) || ImGui::IsMouseDown(ImGuiMouseButton_Middle)))
         cam.pan(io.MouseDelta.x * sx, io.MouseDelta.y * sy, viewHeight());
+}
+
+bool Viewer::press(const Ray& ray) {
+    if (!drag_->press(scene(), ray, camera().forward())) return false;
+    // A body clicked is the figure panel's selection too.
+    if (const std::optional<Drag>& d = session_->world().drag())
+        figurePanel_.selectBody(session_->entityName(d->body.figure),
+                                session_->world().definition(d->body.figure).bodies[std::size_t(d->body.body)].name);
+    return true;
+}
+
+void Viewer::handleFlyKeys() {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (!cvarOn("view_fly") || io.WantCaptureKeyboard) return;
+    OrbitCamera& cam = camera();
+    // Speeds scale with the distance to the target, so a figure and a whole map both fly well.
+    const Real speed = kFlySpeed * cam.distance() * io.DeltaTime * (window_.keyDown(Window::kLeftShift) ? 4 : 1);
+    const auto axis = [this](int plus, int minus) { return Real(window_.keyDown(plus)) - Real(window_.keyDown(minus)); };
+    const Real forward = axis('W', 'S'), right = axis('D', 'A'), up = axis('E', 'Q');
+    if (forward != 0 || right != 0 || up != 0) cam.fly(speed * forward, speed * right, speed * up);
 }
 
 void Viewer::advanceClock() {
@@ -216,7 +248,11 @@ void Viewer::drawControls() {
         console_->execute("step", "button");
     }
     ImGui::SameLine();
-    if (ImGui::Button("Reset")) start();
+    if (ImGui::Button("Respawn")) console_->execute("respawnRagdolls", "button");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("every ragdoll back at its spawn placement, in its spawn pose");
+    ImGui::SameLine();
+    if (ImGui::Button("Restart")) start();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("a new session: the map or figure and the script again");
     ImGui::SameLine();
     if (ImGui::Button("Frame")) camera_.reset();
     float scale = float(console_->cvars().find("af_timeScale")->asReal());
@@ -238,6 +274,8 @@ void Viewer::drawControls() {
     toggle("limits", "af_showLimits");
     ImGui::SameLine();
     toggle("names", "af_showBodyNames");
+    toggle("fly camera", "view_fly");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("WASD, Q/E down/up, Shift faster; hold the right button to look");
     const World& world = session_->world();
     ImGui::Text("t = %.2f s   %s", double(world.time()), world.figureIds().empty() ? "no figures" : world.atRest() ? "at rest" : "moving");
     ImGui::End();
@@ -257,6 +295,7 @@ void Viewer::drawLabels(const render::RenderScene& scene) {
 void Viewer::frame() {
     window_.beginFrame();
     handleMouse();
+    handleFlyKeys();
     advanceClock();
     const render::RenderScene now = scene();
     renderer_.draw(now, marks(), camera(), window_.width(), viewHeight(), window_.height() - viewHeight());
@@ -266,6 +305,8 @@ void Viewer::frame() {
         const ImGuiIO& io = ImGui::GetIO();
         const float top = float(viewHeight()) / io.DisplayFramebufferScale.y;
         panel_.draw(*console_, *session_, 0, top, io.DisplaySize.x, io.DisplaySize.y - top);
+        const float width = std::min(kFigurePanelWidth, io.DisplaySize.x / 2);
+        figurePanel_.draw(*console_, *session_, io.DisplaySize.x - width - 8, 8, width, std::max(100.0f, top - 16));
     }
     window_.renderImGui();
 }

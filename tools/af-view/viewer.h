@@ -3,6 +3,7 @@
 // af-console), the camera, the mouse drag and the panels, and one frame of the window at a time.
 
 #include "console_panel.h"
+#include "figure_panel.h"
 #include "mouse_drag.h"
 #include "orbit_camera.h"
 #include "scene_renderer.h"
@@ -52,6 +53,10 @@ private:
     // The viewer's own overlays: contacts (view_contacts), figures at rest greyed (view_rest).
     void addViewOverlays(render::RenderScene& scene) const;
     void handleMouse();
+    // The left button pressed on the ray: grab the body under it, which the figure panel selects.
+    bool press(const Ray& ray);
+    // The fly camera's keys (view_fly): WASD, Q and E down and up, Shift faster.
+    void handleFlyKeys();
     void advanceClock();
     void drawControls();
     void drawLabels(const render::RenderScene& scene);
@@ -65,6 +70,7 @@ private:
     Window& window_;
     Startup startup_;
     ConsolePanel panel_;
+    FigurePanel figurePanel_;
     SceneRenderer renderer_;
     std::unique_ptr<console::CommandSystem> console_;
     std::unique_ptr<console::Session> session_;
@@ -75,6 +81,7 @@ private:
     double stepDebt_ = 0;    // steps owed to the wall clock while playing
     double lastTime_ = 0;
     bool orbiting_ = false;  // the left button went down on no body
+    bool looking_ = false;   // fly mode: the right button went down in the view
 };
 
 }  // namespace af::view

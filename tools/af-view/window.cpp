@@ -85,5 +85,9 @@ int Window::height() const {
 }
 
 double Window::time() const { return glfwGetTime(); }
+// GLFW names a letter's key by its capital's code (GLFW_KEY_A is 'A').
+bool Window::keyDown(int key) const {
+    return glfwGetKey(window_, key == kLeftShift ? GLFW_KEY_LEFT_SHIFT : key) == GLFW_PRESS;
+}
 
 }  // namespace af::view

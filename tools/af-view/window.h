@@ -28,6 +28,9 @@ public:
     // The framebuffer's size in pixels (what glViewport and glReadPixels see).
     int width() const;
     int height() const;
+    // Whether a key is held: a letter by its capital ('W'), or one of the keys below.
+    bool keyDown(int key) const;
+    static constexpr int kLeftShift = -1;
     // Seconds since the window was made.
     double time() const;
 

@@ -14,6 +14,7 @@
 #include "af/text/diagnostics.h"
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -131,6 +132,19 @@ HeightRange heightRange(const Figure& figure, const RigidPose& placement = {});
 // The groups of bodies joined by constraints (to the world or not), each in body order; a
 // well-formed figure is one tree. Groups are ordered by their first body.
 std::vector<std::vector<int>> bodyTrees(const Figure& figure);
+
+// One of the warnings buildFigure gives about a figure that tends to misbehave (mass ratio across
+// a constraint, lopsided inertia, jointed bodies overlapping, separate trees), with what it is
+// about, so that an editor can show it beside that body or constraint.
+struct FigureWarning {
+    enum class Subject : std::uint8_t { Body, Constraint, Figure };
+    Subject subject = Subject::Figure;
+    int index = -1;  // into Figure::bodies or Figure::constraints; -1 for the whole figure
+    std::string message;
+};
+// The warnings of a built figure, bodies first, then constraints, then the figure; buildFigure
+// reports the same ones as diagnostics at the body's or constraint's place in the file.
+std::vector<FigureWarning> figureWarnings(const Figure& figure);
 
 // The skeleton the bodies pose (docs/figures.md §3.6), in world space: driven joints follow their bodies as
 // their `mod` says, every other joint follows its parent with its af_pose local transform, and
