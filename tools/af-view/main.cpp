@@ -9,6 +9,7 @@
 // Exit status: 0; 1 when a command of the startup or the script failed (the picture is still
 // written); 2 for bad usage, no display or no OpenGL 3.3, or a picture that cannot be written.
 
+#include "command_line_usage.h"
 #include "framebuffer_png.h"
 #include "viewer.h"
 #include "window.h"
@@ -77,14 +78,7 @@ int main(int argc, char** argv) {
     app.add_option("--screenshot", o.screenshot, "draw one frame, write it as a PNG, and exit")->type_name("FILE.png");
     app.add_option("--size", o.size, "the window's size (default 1280x800; 640x480 with --screenshot)")->type_name("WxH");
     app.add_flag("--panels", o.panels, "with --screenshot: draw the panels too");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "af-view: error: " << e.what() << "\n" << "Run with --help for the options.\n";
-        return 2;
-    }
+    if (const auto exitStatus = af::tools::parseCommandLine(app, argc, argv, "af-view")) return *exitStatus;
     try {
         return run(o);
     } catch (const std::exception& e) {
