@@ -271,7 +271,9 @@ bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const C
         figure.tree.factor(figure.localRows, figure.ranges, figure.localBodies, TreeProblems::PositionOnly, figure.keys);
         tree = figure.tree.solvePositionImpulses(figure.localRows);
     }
-    if (tree.status == LcpStatus::Solved) {
+    // As for a figure alone (Island::solveWithTree): a large block keeps the tree's frozen-box
+    // answer rather than pivoting over all its rows.
+    if (tree.status == LcpStatus::Solved || (tree.frozenAnswer && n > tuning.denseRescueRows)) {
         const std::span<const Real> lambda = figure.tree.impulses();
         std::copy(lambda.begin(), lambda.end(), figure.x.begin());
     } else {

@@ -91,7 +91,7 @@ private:
     static void allowApproach(ConstraintRow& row, Real cdot, Real dt, Real previous);
     static void holdDespiteSoftness(ConstraintRow& row, Real previous);
     LcpStatus solveVelocities(IslandContext& context);
-    bool solveWithTree(IslandContext& context);
+    bool solveWithTree(IslandContext& context, bool& frozen);
     bool solveSparse(const WarmStartCache& guess, IslandContext& context);
     // v += M⁻¹Jᵀλ of the velocity solve's answer.
     void applyImpulses();

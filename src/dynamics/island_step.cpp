@@ -215,7 +215,8 @@ LcpStatus Island::solveVelocities(IslandContext& context) {
         return r.status == LcpStatus::NotConverged ? LcpStatus::Solved : r.status;
     }
     if (context.settings.solver == SolverKind::Tree) {
-        if (solveWithTree(context)) return LcpStatus::Solved;
+        bool frozen = false;
+        if (solveWithTree(context, frozen)) return frozen ? LcpStatus::NotConverged : LcpStatus::Solved;
         ++context.counters.treeFallbacks;
         system_.buildMatrix(rows_);
     }
@@ -246,11 +247,14 @@ LcpStatus Island::solveByFigures(BlockProblem problem, IslandContext& context, R
 // last solve is as old as the sparse path's last give-up (our humanoid on the default map, from
 // it: 12 tree solves of 69 to 3410 pivots, two of them and the dense solve after them
 // NotConverged). Its impulses go where the dense solve's would, so that applying them and SHAKE
-// work alike. False when neither can serve these rows.
+// work alike. False when neither can serve these rows. A tree solve whose coupled friction did
+// not settle serves, on an island beyond SolverTuning::denseRescueRows, with its frozen-box
+// answer: `frozen` then says the solve failed (counted as a failure), though joints hold.
 // An island without contact points (in the air) goes to the tree at once: its LCP holds only
 // limit rows, and the sparse path factorised every step (a refinement gains only ω·dt; bench
 // ragdoll's fall: w 1e-6 after one, tolerance 1e-11; 203k instructions against the tree's 107k).
-bool Island::solveWithTree(IslandContext& context) {
+bool Island::solveWithTree(IslandContext& context, bool& frozen) {
+    frozen = false;
     if (!points_.empty() && solveSparse(context.velocityWarmStart, context)) return true;
     if (!treeReady_) {
         tree_.setStructure(bodies_, joints_);
@@ -258,7 +262,8 @@ bool Island::solveWithTree(IslandContext& context) {
     }
     tree_.factor(rows_, ranges_, bodies_, TreeProblems::VelocityAndPosition, rowKeys_);
     const TreeSolveResult r = tree_.solveVelocity(rows_, bodies_, system_.states(), system_.solution());
-    if (r.status != LcpStatus::Solved) return false;
+    frozen = r.status != LcpStatus::Solved && r.frozenAnswer && rows_.size() > context.tuning.denseRescueRows;
+    if (r.status != LcpStatus::Solved && !frozen) return false;
     const std::span<const Real> lambda = tree_.impulses();
     std::copy(lambda.begin(), lambda.end(), system_.solution().begin());
     statesFromImpulses(context);

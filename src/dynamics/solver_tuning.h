@@ -13,6 +13,13 @@ struct SolverTuning {
     // plain boxed solves (lcp.h, LcpExactSettings::frictionBoxPasses).
     LcpExactSettings exact{.frictionBoxPasses = 32};
     LcpPgsSettings pgs;
+    // With the tree solver, a solve whose coupled friction the tree's pivoting did not settle is
+    // tried again by the dense pivoting solve of all rows only on an island of at most this many
+    // rows; a larger one keeps the tree's frozen-box answer (its joints held exactly). Measured:
+    // after the tree failed, the dense solve settled a humanoid alone (177 rows, 1 057 pivots),
+    // but never an island of several figures (stacks of 4 humanoids: 372 to 580 rows, 1 017 to
+    // 17 748 pivots, all NotConverged; bench pile of 8: one such step cost 0.45 s).
+    std::size_t denseRescueRows = 300;
     // Block Gauss–Seidel over an island's figures (figure_blocks.h): at most maxSweeps passes of
     // the blocks. The contacts between figures are iterated until a sweep changes none of them
     // by more than velocityShare of the slop crossed in a step (velocities), or positionShare of

@@ -3,6 +3,7 @@
 
 #include "tree_solver.h"
 
+#include "frozen_boxes.h"
 #include "row_system.h"
 #include "tree_internal.h"
 
@@ -48,6 +49,9 @@ struct WarmStart {
 
 struct TreeSolver::Impl {
     LcpExactSolver lcp;
+    // A coupled friction problem the pivoting solve does not settle gets the frozen-box answer.
+    LcpPgsSolver pgs;
+    FrozenBoxFallback frozenBoxes;
     Forest forest;
     TreeFactor tree;
     Auxiliary aux;
@@ -65,7 +69,7 @@ struct TreeSolver::Impl {
     std::vector<int> nodeFirst, nodeRows;
 
     // Workspace of a solve.
-    std::vector<Real> b, bAux, rhs, lo, hi, mu, cfm, x, lambda;
+    std::vector<Real> b, bAux, rhs, lo, hi, mu, cfm, x, xStart, lambda;
     std::vector<int> findex;
     std::vector<LcpRowState> states;
     std::vector<Vec6> z, solution, bodyImpulse;
@@ -361,11 +365,19 @@ TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& s
             problem.mu = mu;
         }
         problem.cfm = cfm;
+        const bool coupled = !problem.findex.empty();
+        if (coupled) xStart.assign(x.begin(), x.end());
         const LcpResult r = lcp.solve(problem, x, states);
         result.status = r.status;
         result.pivots = r.pivots;
         result.couplingPasses = r.couplingPasses;
         result.residual = r.residual;
+        if (r.status == LcpStatus::NotConverged && coupled) {
+            // Never the failed solve's impulses: the frozen-box answer from the same start.
+            std::copy(xStart.begin(), xStart.end(), x.begin());
+            frozenBoxes.solve(problem, x, states, lcp, pgs);
+            result.frozenAnswer = true;
+        }
         remember(rows, start);
     }
     if (tree.singularBlocks() > 0 && result.status == LcpStatus::Solved) result.status = LcpStatus::Unsatisfiable;

@@ -43,6 +43,9 @@ struct TreeSolveResult {
     int  pivots = 0;                       ///< LcpResult::pivots of the auxiliary LCP
     int  couplingPasses = 0;
     Real residual = 0;                     ///< natural residual of the auxiliary LCP (lcp.h)
+    bool frozenAnswer = false;             ///< NotConverged, and the auxiliary rows hold the
+                                           ///< frozen-box answer (frozen_boxes.h) instead of the
+                                           ///< failed solve's: impulses() is usable, its joints held
 };
 
 /// Which problems a factorisation serves. The position problem holds friction rows at 0, so a

@@ -29,6 +29,13 @@ inline std::filesystem::path scratchDir() {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "af_tests" /
                                       (std::string(test->test_suite_name()) + "." + test->name() + "." +
                                        std::to_string(getpid()));
+    // Emptied on a test's first call: a run long ago under the same process id (ids are reused)
+    // left its files there, which a test writing with no --force then meets.
+    static std::filesystem::path emptied;
+    if (dir != emptied) {
+        std::filesystem::remove_all(dir);
+        emptied = dir;
+    }
     std::filesystem::create_directories(dir);
     return dir;
 }
