@@ -254,6 +254,7 @@ bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const C
         figure.treeReady = true;
     }
     TreeSolveResult tree;
+    figure.tree.setPivotRowLimit(pivotRowLimit_, tuning.pgs);
     std::copy(figure.lastX.begin(), figure.lastX.end(), figure.x.begin());
     if (problem == BlockProblem::Velocity) {
         for (std::size_t l = 0; l < figure.bodies.size(); ++l) {

@@ -46,6 +46,9 @@ public:
     // static body's response is zero).
     void setStructure(std::span<const RigidBody> bodies, std::span<const Joint> joints);
     std::size_t figureCount() const { return figures_.size(); }
+    // A block whose auxiliary rows (contacts, limits, joint friction) outnumber this has them
+    // solved by projected Gauss–Seidel in its tree solver (TreeSolver::setPivotRowLimit).
+    void setPivotRowLimit(std::size_t rows) { pivotRowLimit_ = rows; }
 
     // Solves the problem in `system` (responses built, b set; for Position, b = −error and the
     // friction rows held at 0) for `rows`, whose joint rows `ranges` gives in the joints' order
@@ -90,6 +93,7 @@ private:
     Real boundOf(const LcpProblem& problem, std::span<const Real> x, std::size_t i, Real& lo) const;
 
     std::vector<Figure> figures_;
+    std::size_t pivotRowLimit_ = 0;
     std::vector<int> figureOf_;  // per island body
     std::vector<int> localOf_;   // per island body, its index in its figure
     std::vector<int> rowFigure_;  // per row of this solve: its figure, or −1 between figures

@@ -234,6 +234,7 @@ LcpStatus Island::solveByFigures(BlockProblem problem, IslandContext& context, R
         blocks_.setStructure(bodies_, joints_);
         blocksReady_ = true;
     }
+    blocks_.setPivotRowLimit(context.settings.exactRowLimit);
     const BlockSolveResult r =
         blocks_.solve(problem, rows_, ranges_, rowKeys_, system_, bodies_, context.tuning, stopChange);
     context.counters.iterations = std::max(context.counters.iterations, r.sweeps);

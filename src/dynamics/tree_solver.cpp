@@ -52,6 +52,8 @@ struct TreeSolver::Impl {
     // A coupled friction problem the pivoting solve does not settle gets the frozen-box answer.
     LcpPgsSolver pgs;
     FrozenBoxFallback frozenBoxes;
+    std::size_t pivotRowLimit = 0;  // beyond it, the auxiliary LCP by iterativePgs
+    LcpPgsSolver iterativePgs;
     Forest forest;
     TreeFactor tree;
     Auxiliary aux;
@@ -86,6 +88,9 @@ struct TreeSolver::Impl {
     void warmStates(const ConstraintRows& rows, const WarmStart& start);
     void remember(const ConstraintRows& rows, WarmStart& start) const;
     void solvePrimary();
+    void primaryRhs();
+    void solveIteratively(const LcpProblem& problem, TreeSolveResult& result);
+    TreeSolveResult finish(const ConstraintRows& rows, bool sumPerBody, TreeSolveResult result);
     void accumulateImpulses(const ConstraintRows& rows);
 };
 
@@ -97,6 +102,11 @@ TreeSolver::TreeSolver(TreeSolver&&) noexcept = default;
 TreeSolver& TreeSolver::operator=(TreeSolver&&) noexcept = default;
 
 void TreeSolver::setSettings(const LcpExactSettings& settings) { impl_->lcp.setSettings(settings); }
+
+void TreeSolver::setPivotRowLimit(std::size_t rows, const LcpPgsSettings& pgs) {
+    impl_->pivotRowLimit = rows;
+    impl_->iterativePgs.setSettings(pgs);
+}
 
 void TreeSolver::setStructure(std::span<const RigidBody> bodies, std::span<const Joint> joints) {
     impl_->forest = buildForest(bodies, joints);
@@ -325,16 +335,10 @@ TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& s
         return result;
     }
     const std::size_t n = auxRows.size();
-    const std::size_t nodes = forest.nodes.size();
     result.auxiliaryRows = static_cast<int>(n);
     result.primaryRows = static_cast<int>(std::count(auxIndex.begin(), auxIndex.end(), kPrimary));
 
     // What the primary rows alone do, x0 = H⁻¹ [0; b_P]; the auxiliary rows get what is left.
-    auto primaryRhs = [&] {
-        z.assign(nodes, Vec6::Zero());
-        for (std::size_t i = 0; i < nodes; ++i)
-            for (int q = 0; q < nodeRows[i]; ++q) z[i](q) = b[static_cast<std::size_t>(nodeFirst[i] + q)];
-    };
     primaryRhs();
     solvePrimary();
     bAux.resize(n);
@@ -366,6 +370,11 @@ TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& s
         }
         problem.cfm = cfm;
         const bool coupled = !problem.findex.empty();
+        if (pivotRowLimit > 0 && n > pivotRowLimit) {
+            solveIteratively(problem, result);
+            remember(rows, start);
+            return finish(rows, sumPerBody, result);
+        }
         if (coupled) xStart.assign(x.begin(), x.end());
         const LcpResult r = lcp.solve(problem, x, states);
         result.status = r.status;
@@ -380,6 +389,39 @@ TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& s
         }
         remember(rows, start);
     }
+    return finish(rows, sumPerBody, result);
+}
+
+// z = [0; b_P] per node, the right-hand side of the primary rows.
+void TreeSolver::Impl::primaryRhs() {
+    z.assign(forest.nodes.size(), Vec6::Zero());
+    for (std::size_t i = 0; i < z.size(); ++i)
+        for (int q = 0; q < nodeRows[i]; ++q) z[i](q) = b[static_cast<std::size_t>(nodeFirst[i] + q)];
+}
+
+// The auxiliary LCP beyond the pivot row limit: projected Gauss–Seidel on the Schur complement
+// from the warm start in x, and row states from its answer for the next warm start. Running
+// out of sweeps is its way of stopping, not a failure.
+void TreeSolver::Impl::solveIteratively(const LcpProblem& problem, TreeSolveResult& result) {
+    const LcpPgsResult r = iterativePgs.solve(problem, x);
+    result.status = r.status == LcpStatus::InvalidInput ? r.status : LcpStatus::Solved;
+    result.iterative = true;
+    result.residual = r.residual;
+    const Real tolerance = lcp.settings().tolerance;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        const int source = problem.findex.empty() ? -1 : problem.findex[k];
+        const Real box = source >= 0 ? problem.mu[k] * std::abs(x[static_cast<std::size_t>(source)]) : 0;
+        const Real lo = source >= 0 ? -box : problem.lo[k];
+        const Real hi = source >= 0 ? box : problem.hi[k];
+        const Real near = tolerance * std::max(Real(1), std::abs(x[k]));
+        states[k] = x[k] <= lo + near ? LcpRowState::AtLower : x[k] >= hi - near ? LcpRowState::AtUpper : LcpRowState::Free;
+    }
+}
+
+// The primary rows' impulses for the auxiliary ones in x, and every row's λ.
+TreeSolveResult TreeSolver::Impl::finish(const ConstraintRows& rows, bool sumPerBody, TreeSolveResult result) {
+    const std::size_t n = auxRows.size();
+    const std::size_t nodes = forest.nodes.size();
     if (tree.singularBlocks() > 0 && result.status == LcpStatus::Solved) result.status = LcpStatus::Unsatisfiable;
 
     // The primary impulses with the auxiliary ones applied: [y; μ] = H⁻¹ [Σ λ_k e_k; b_P], λ_P = −μ.

@@ -43,6 +43,8 @@ struct TreeSolveResult {
     int  pivots = 0;                       ///< LcpResult::pivots of the auxiliary LCP
     int  couplingPasses = 0;
     Real residual = 0;                     ///< natural residual of the auxiliary LCP (lcp.h)
+    bool iterative = false;                ///< the auxiliary LCP was beyond the pivot row limit and
+                                           ///< solved by projected Gauss–Seidel (its status Solved)
     bool frozenAnswer = false;             ///< NotConverged, and the auxiliary rows hold the
                                            ///< frozen-box answer (frozen_boxes.h) instead of the
                                            ///< failed solve's: impulses() is usable, its joints held
@@ -61,6 +63,11 @@ public:
     TreeSolver& operator=(TreeSolver&&) noexcept;
 
     void setSettings(const LcpExactSettings& settings);
+    /// An auxiliary LCP of more rows than this (0: no limit) is solved by projected Gauss–Seidel
+    /// on the Schur complement, warm-started, instead of by pivoting: a pivot costs O(rows²) and
+    /// a few hundred contacts take thousands (a 57-body figure lying flat: seconds a step). The
+    /// joints stay exact; the contacts and limits are as converged as `pgs` leaves them.
+    void setPivotRowLimit(std::size_t rows, const LcpPgsSettings& pgs = {});
 
     /// Chooses the primary joints and orders the tree. `bodies` decides which bodies are static
     /// (inverseMass 0, treated as the world); joints' body indices refer to it. Throws

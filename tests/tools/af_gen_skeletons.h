@@ -91,6 +91,24 @@ inline std::vector<SynthJoint> chain() {
     return s.joints;
 }
 
+// A centipede without skin: a spine of 19 segments along +x, each with a leg and a foot on
+// either side, 96 joints and 57 bodies. It lands flat, with a contact or more under most bodies:
+// more rows between the figure and the floor than a pivoting solve can take (docs/solver.md).
+inline std::vector<SynthJoint> centipede() {
+    Builder s;
+    int spine = s.add("origin", -1, af::Vec3::Zero());
+    for (int i = 0; i < 19; ++i) {
+        const double x = 8.0 * i;
+        spine = s.add("seg" + std::to_string(i), spine, af::Vec3(x, 0, 20));
+        for (const double side : {1.0, -1.0}) {
+            const std::string name = side > 0 ? "L" : "R";
+            const int leg = s.add("leg" + name + std::to_string(i), spine, af::Vec3(x, 6 * side, 20));
+            s.add("foot" + name + std::to_string(i), leg, af::Vec3(x, 10 * side, 14));
+        }
+    }
+    return s.joints;
+}
+
 // A dog standing on four legs, facing +x, with a jaw and eyes in its head, toes on its paws and a
 // tail: the grouping folds the end parts into their parents and the names give the joint kinds.
 inline std::vector<SynthJoint> quadruped() {

@@ -266,6 +266,18 @@ TEST(AfGen, SubtreesOutOfJointOrderAreContainedOnce) {
 
 // Without an `origin` joint the root body drives the skeleton root's first child, as the
 // builder binds it (docs/figures.md §3.6), and contains the root.
+// A long figure lying flat has hundreds of contact rows with the floor: its block solves them by
+// projected Gauss–Seidel through its joint tree (TreeSolver::setPivotRowLimit), where pivoting
+// over them took seconds a step (af-sim ran minutes for 3 s). Its joints still hold.
+TEST(AfGen, AFigureOfFiftySevenBodiesLandingFlatRestsWithItsJointsClosed) {
+    const std::vector<SynthJoint> joints = centipede();
+    const fs::path mod = modWith("centi", joints);
+    ASSERT_EQ(afGen(mod, "models/centi/centi.md5mesh --out gen").status, 0);
+    const Dropped dropped = checkAndDrop(mod, mod / "gen", "centi", joints.size());
+    EXPECT_EQ(dropped.masses.size(), 57u);
+    expectRestsSoundly(dropped);
+}
+
 TEST(AfGen, WithoutAnOriginJointTheRootBodyDrivesTheRootsFirstChild) {
     std::vector<SynthJoint> joints = chain();
     joints[0].name = "base";
