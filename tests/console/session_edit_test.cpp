@@ -3,6 +3,7 @@
 // edits print one error and change nothing, respawnRagdolls puts figures back where they spawned.
 
 #include "console/session.h"
+#include "session_console.h"
 
 #include "af/text/af_parser.h"
 
@@ -17,14 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct EditConsole {
-    std::string info, errors;
-    CommandSystem commands{Output([this](std::string_view l) { info += std::string(l) + "\n"; },
-                                  [this](std::string_view l) { errors += std::string(l) + "\n"; })};
-    Session session;
-
-    explicit EditConsole(std::vector<fs::path> roots = {AF_SOURCE_DIR}) : session(std::move(roots), commands) {}
-    ExecuteResult run(std::string_view text) { return commands.execute(text, "edit.cfg"); }
+struct EditConsole : test::SessionConsole {
+    using SessionConsole::SessionConsole;
     FigureId figure(std::size_t i = 0) const { return session.world().figureIds().at(i); }
     const FigureBody& body(const std::string& name, std::size_t figureIndex = 0) const {
         const Figure& f = session.world().definition(figure(figureIndex));
@@ -32,18 +27,9 @@ struct EditConsole {
     }
 };
 
-fs::path editScratch(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "af_session_edit_test";
-    fs::create_directories(dir);
-    return dir / name;
-}
+fs::path editScratch(const std::string& name) { return test::scratchFile("af_session_edit_test", name); }
 
-std::string readText(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+std::string readText(const fs::path& path) { return test::readText(path); }
 
 // A copy of the repository's mod folder, for saves into the decl's own file.
 fs::path editableMod(const std::string& name) {

@@ -2,6 +2,7 @@
 // drag, delete, reload an edited figure, and a save cut short (session.h).
 
 #include "console/session.h"
+#include "session_console.h"
 
 #include "af/collision/narrowphase.h"
 #include "af/figure/saved_pose.h"
@@ -19,28 +20,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct SessionConsole {
-    std::string info, errors;
-    CommandSystem commands{Output([this](std::string_view l) { info += std::string(l) + "\n"; },
-                                  [this](std::string_view l) { errors += std::string(l) + "\n"; })};
-    Session session;
+using test::SessionConsole;
 
-    explicit SessionConsole(std::vector<fs::path> roots = {AF_SOURCE_DIR}) : session(std::move(roots), commands) {}
-    ExecuteResult run(std::string_view text) { return commands.execute(text, "test.cfg"); }
-};
+fs::path scratch(const std::string& name) { return test::scratchFile("af_session_test", name); }
 
-fs::path scratch(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "af_session_test";
-    fs::create_directories(dir);
-    return dir / name;
-}
-
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+std::string readFile(const fs::path& path) { return test::readText(path); }
 
 // The `body` poses of every AF entity of a map file, by entity then body key.
 std::map<std::string, std::map<std::string, RigidPose>> savedPoses(const fs::path& path) {
@@ -193,7 +177,7 @@ TEST(Session, ASaveCutShortLeavesTheOldMapWhole) {
 // with a warning, as Doom's af_testSolid warns.
 TEST(Session, ASpawnBesideAWallIsLiftedClearAndAnOriginInsideItIsWarnedOf) {
     const fs::path map = scratch("wall.map");
-    std::ofstream(map) << test::floorBesideWallMap();
+    std::ofstream(map) << af::test::floorBesideWallMap();
     SessionConsole c;
     ASSERT_TRUE(c.run("map " + map.string() + "; spawn ragdoll_humanoid").ok()) << c.errors;
     const World& world = c.session.world();

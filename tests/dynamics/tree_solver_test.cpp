@@ -177,20 +177,11 @@ TEST(TreeSolverExact, ContactsWithFrictionMatchTheDenseSolve) {
     reportTreeAgreement("humanoid with contacts", scene, velocity, position);
 }
 
-// A coupled friction problem that the pivoting solve does not settle (one coupling pass for
-// contacts sliding at up to 70 units/s) is never answered with that solve's impulses: the tree
-// leaves the frozen-box answer, which the world keeps on large islands rather than pivoting over
-// all rows (SolverTuning::denseRescueRows). Its joints hold exactly, and every contact and
-// friction impulse is within its box.
-TEST(TreeSolverFailure, AnUnsettledFrictionSolveLeavesTheFrozenBoxAnswerWithTheJointsHeld) {
-    TreeSolver solver(LcpExactSettings{.maxCouplingPasses = 1});
-    Scene scene = humanoidWithContacts(solver);
-    solver.factor(scene.rows, scene.ranges, scene.bodies);
-    const TreeSolveResult result = solver.solveVelocity(scene.rows, scene.bodies);
-    ASSERT_EQ(result.status, LcpStatus::NotConverged);
-    EXPECT_TRUE(result.frozenAnswer);
+// An answer that is not the exact one still holds every primary joint row exactly once its
+// impulses are applied, and keeps every contact and friction impulse in its box; returns how many
+// contact rows had a box to keep (a test whose contacts all part tests nothing).
+int expectJointsHeldAndImpulsesBoxed(const Scene& scene, const TreeSolver& solver, Real scale) {
     const std::span<const Real> lambda = solver.impulses();
-    const Real scale = std::max(Real(1), largest(lambda));
     std::vector<RigidBody> after = scene.bodies;
     solver.applyImpulses(after);
     int held = 0;
@@ -216,7 +207,22 @@ TEST(TreeSolverFailure, AnUnsettledFrictionSolveLeavesTheFrozenBoxAnswerWithTheJ
         EXPECT_LE(std::abs(lambda[i]), box + 1e-9 * scale) << "friction beyond its box, row " << i;
         boxed += box > 0;
     }
-    EXPECT_GT(boxed, 0) << "no contact pushed: the problem tested nothing";
+    return boxed;
+}
+
+// A coupled friction problem that the pivoting solve does not settle (one coupling pass for
+// contacts sliding at up to 70 units/s) is never answered with that solve's impulses: the tree
+// leaves the frozen-box answer, which the world keeps on large islands rather than pivoting over
+// all rows (SolverTuning::denseRescueRows).
+TEST(TreeSolverFailure, AnUnsettledFrictionSolveLeavesTheFrozenBoxAnswerWithTheJointsHeld) {
+    TreeSolver solver(LcpExactSettings{.maxCouplingPasses = 1});
+    Scene scene = humanoidWithContacts(solver);
+    solver.factor(scene.rows, scene.ranges, scene.bodies);
+    const TreeSolveResult result = solver.solveVelocity(scene.rows, scene.bodies);
+    ASSERT_EQ(result.status, LcpStatus::NotConverged);
+    EXPECT_TRUE(result.frozenAnswer);
+    const Real scale = std::max(Real(1), largest(solver.impulses()));
+    EXPECT_GT(expectJointsHeldAndImpulsesBoxed(scene, solver, scale), 0) << "no contact pushed";
 }
 
 // Beyond the pivot row limit the auxiliary rows are relaxed by projected Gauss–Seidel on the
@@ -231,32 +237,12 @@ TEST(TreeSolverIterative, BeyondThePivotRowLimitTheJointsHoldAndTheContactsAreRe
     ASSERT_EQ(result.status, LcpStatus::Solved);
     ASSERT_TRUE(result.iterative);
     ASSERT_GT(result.auxiliaryRows, 5);
-    const std::span<const Real> lambda = solver.impulses();
     Dense dense;
     solveDense(scene, false, dense);
     ASSERT_EQ(dense.result.status, LcpStatus::Solved);
     const Real scale = std::max(Real(1), largest(dense.lambda));
-    std::vector<RigidBody> after = scene.bodies;
-    solver.applyImpulses(after);
-    for (std::size_t k = 0; k < scene.joints.size(); ++k) {
-        if (!solver.isPrimary(static_cast<int>(k))) continue;
-        for (int q = 0; q < scene.ranges[k].equalityRows; ++q) {
-            const std::size_t i = static_cast<std::size_t>(scene.ranges[k].first + q);
-            const ConstraintRow& row = scene.rows[i];
-            EXPECT_NEAR(rowVelocity(row, after), row.target - row.cfm * lambda[i], 1e-9 * scale) << "joint " << k;
-        }
-    }
-    const std::size_t contactsFrom = static_cast<std::size_t>(scene.ranges.back().first + scene.ranges.back().total());
-    for (std::size_t i = contactsFrom; i < scene.rows.size(); ++i) {
-        const ConstraintRow& row = scene.rows[i];
-        if (row.frictionSource < 0) {
-            EXPECT_GE(lambda[i], 0) << "a contact pulls, row " << i;
-        } else {
-            const Real box = row.frictionCoefficient * std::abs(lambda[static_cast<std::size_t>(row.frictionSource)]);
-            EXPECT_LE(std::abs(lambda[i]), box * (1 + 1e-12)) << "friction beyond its box, row " << i;
-        }
-    }
-    const Real residual = lcpResidual(dense.system.problem(), lambda) / scale;
+    EXPECT_GT(expectJointsHeldAndImpulsesBoxed(scene, solver, scale), 0) << "no contact pushed";
+    const Real residual = lcpResidual(dense.system.problem(), solver.impulses()) / scale;
     std::printf("[ iterative ] %d auxiliary rows: natural residual %.2g of the largest impulse\n",
                 result.auxiliaryRows, residual);
     EXPECT_LE(residual, kIterativeResidual);
