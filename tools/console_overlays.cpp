@@ -4,9 +4,12 @@
 
 #include "console_overlays.h"
 
+#include "console/console_text.h"
 #include "console/show_geometry.h"
 
 #include "af/text/strings.h"
+
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -25,11 +28,25 @@ constexpr Colour kTree = {0.05f, 0.45f, 0.20f};
 constexpr Colour kVelocity = {0.85f, 0.08f, 0.10f};
 constexpr Colour kName = {0.08f, 0.08f, 0.10f};
 constexpr Colour kHighlight = {1.00f, 0.15f, 0.80f};
+constexpr Colour kInertia = {0.45f, 0.20f, 0.75f};
 
 constexpr Real kAxisLength = 5;   // a joint's axis, each way from the anchor
 constexpr Real kLimitSize = 7;    // a limit's cone, pyramid or fan, from the anchor
 constexpr Real kVelocityTime = 0.1;  // s: an arrow reaches where its body will be this much later
 constexpr Real kPi = std::numbers::pi_v<Real>;
+
+// A body's principal axes of inertia, each drawn both ways from its centre of mass as far as its
+// radius of gyration about it (√(I/m)): a long thin bone shows a short axis along its length and
+// two long ones across, and axes of very different lengths show lopsided inertia at a glance.
+void addInertiaAxes(render::Overlay& o, const RigidBody& body) {
+    if (body.inverseMass <= 0) return;
+    const Eigen::SelfAdjointEigenSolver<Mat3> principal(body.inertiaWorld());
+    for (int k = 0; k < 3; ++k) {
+        const Real gyration = std::sqrt(std::max(Real(0), principal.eigenvalues()[k]) * body.inverseMass);
+        const Vec3 axis = gyration * principal.eigenvectors().col(k);
+        o.lines.push_back({body.position - axis, body.position + axis, kInertia, 1.5, false});
+    }
+}
 
 Colour darker(const Colour& c) { return {c[0] * 0.6f, c[1] * 0.6f, c[2] * 0.6f}; }
 
@@ -136,7 +153,20 @@ void addShowOverlays(render::RenderScene& scene, const World& world, const ShowF
             // An arrow under half a unit would be only its head: a body all but still has none.
             if (flags.velocity && body.linearVelocity.norm() * kVelocityTime > 0.5)
                 o.lines.push_back({body.position, body.position + kVelocityTime * body.linearVelocity, kVelocity, 2.0, true});
-            if (flags.bodyNames || highlighted) o.labels.push_back({body.position, figure.bodies[std::size_t(b)].name, highlighted ? kHighlight : kName});
+            if (flags.inertia) addInertiaAxes(o, body);
+            // Name and mass share one label, as Doom prints them on one line.
+            std::string label = flags.bodyNames || highlighted ? figure.bodies[std::size_t(b)].name : "";
+            if (flags.mass) label += (label.empty() ? "" : " ") + fixed(body.mass());
+            if (!label.empty()) o.labels.push_back({body.position, label, highlighted ? kHighlight : kName});
+        }
+        if (flags.totalMass && range.bodyCount > 0) {
+            Real total = 0;
+            Vec3 top = centre(0);
+            for (int b = 0; b < range.bodyCount; ++b) {
+                total += bodies[std::size_t(range.firstBody + b)].mass();
+                if (centre(b).z() > top.z()) top = centre(b);
+            }
+            o.labels.push_back({top + Vec3(0, 0, 2 * kAxisLength), "total mass " + fixed(total), kName});
         }
     }
 }

@@ -3,6 +3,7 @@
 
 #include "console_screenshot.h"
 
+#include "console/console_text.h"
 #include "console/show_geometry.h"
 
 #include <gtest/gtest.h>
@@ -59,6 +60,47 @@ TEST(ConsoleOverlays, TreesLimitsAndVelocitiesHaveTheirShapes) {
     ASSERT_TRUE(c.commands.execute("drag off\nwaitRest 10", "test.cfg").ok());
     flags.trees = true;
     EXPECT_TRUE(screenshotScene(c.session, flags).overlay.lines.empty()) << "af_showActive: nothing for a ragdoll at rest";
+}
+
+// af_showMass puts each body's mass beside its name (one label, as Doom prints them),
+// af_showTotalMass one label per figure with the sum, and af_showInertia three principal axes per
+// body through its centre, each as long both ways as the radius of gyration about it: so the
+// lengths give back the body's moments (Σ over the axes of m·k² is the inertia's trace).
+TEST(ConsoleOverlays, MassesTotalMassAndInertiaAxesSayWhatTheBodiesWeigh) {
+    Console c;
+    const World& world = c.world();
+    const std::span<const RigidBody> bodies = world.bodies();
+    ShowFlags flags;
+    flags.bodyNames = flags.mass = flags.totalMass = true;
+    const render::RenderScene named = screenshotScene(c.session, flags);
+    ASSERT_EQ(named.overlay.labels.size(), bodies.size() + 1);
+    const Figure& figure = world.definition(world.figureIds().front());
+    Real total = 0;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        total += bodies[b].mass();
+        EXPECT_EQ(named.overlay.labels[b].text, figure.bodies[b].name + " " + fixed(bodies[b].mass()));
+    }
+    EXPECT_EQ(named.overlay.labels.back().text, "total mass " + fixed(total));
+    EXPECT_NEAR(total, 150, 0.01) << "the humanoid's totalMass";
+
+    flags = {};
+    flags.inertia = true;
+    const render::RenderScene axes = screenshotScene(c.session, flags);
+    ASSERT_EQ(axes.overlay.lines.size(), 3 * bodies.size());
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        Real trace = 0;
+        for (int k = 0; k < 3; ++k) {
+            const render::OverlayLine& line = axes.overlay.lines[3 * b + std::size_t(k)];
+            EXPECT_LT(((line.from + line.to) / 2 - bodies[b].position).norm(), 1e-9) << "through the centre of mass";
+            const Vec3 half = (line.to - line.from) / 2;
+            trace += bodies[b].mass() * half.squaredNorm();
+            for (int l = 0; l < k; ++l) {
+                const render::OverlayLine& other = axes.overlay.lines[3 * b + std::size_t(l)];
+                EXPECT_LT(std::abs(half.normalized().dot((other.to - other.from).normalized())), 1e-9) << "principal axes are ⟂";
+            }
+        }
+        EXPECT_NEAR(trace, bodies[b].inertiaWorld().trace(), 1e-9 * bodies[b].inertiaWorld().trace()) << figure.bodies[b].name;
+    }
 }
 
 TEST(ConsoleOverlays, TheHighlightedBodyTakesTheHighlightColourAndALabel) {

@@ -274,6 +274,14 @@ void Viewer::drawControls() {
     toggle("limits", "af_showLimits");
     ImGui::SameLine();
     toggle("names", "af_showBodyNames");
+    toggle("masses", "af_showMass");
+    ImGui::SameLine();
+    toggle("total mass", "af_showTotalMass");
+    ImGui::SameLine();
+    toggle("inertia", "af_showInertia");
+    toggle("velocities", "af_showVelocity");
+    ImGui::SameLine();
+    toggle("trees", "af_showTrees");
     toggle("fly camera", "view_fly");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("WASD, Q/E down/up, Shift faster; hold the right button to look");
     const World& world = session_->world();
