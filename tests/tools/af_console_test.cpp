@@ -290,10 +290,11 @@ TEST(AfConsole, ScreenshotDrawsTheShowCvarsOverTheWorld) {
         EXPECT_EQ(run.status, 0) << run.err;
         return readAll(dir / name);
     };
-    const std::string plain = shot("plain.png", ""), again = shot("again.png", "af_showMass 1\n");
+    const std::string plain = shot("plain.png", ""), again = shot("again.png", "af_showTimings 1\n");
     const std::string marked = shot("marked.png", "af_showConstraints 1; af_showLimits 1; af_showTrees 1\n");
-    EXPECT_EQ(plain, again) << "af_showMass has no picture";
+    EXPECT_EQ(plain, again) << "af_showTimings has no picture";
     EXPECT_NE(plain, marked);
+    EXPECT_NE(plain, shot("masses.png", "af_showMass 1; af_showInertia 1\n"));
 }
 
 }  // namespace
