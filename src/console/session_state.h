@@ -75,7 +75,7 @@ struct Session::State {
 // among them (session_cvars.cpp).
 void registerSessionCommands(Session::State& state, CommandSystem& console);
 void registerSimulationCvars(Session::State& state, CommandSystem& console);
-// editBody, editConstraint, saveAF, respawnRagdolls, checkFigure (session_edit_commands.cpp).
+// editBody, editConstraint, saveAF, respawnRagdolls, checkFigure (session_edit.cpp).
 void registerEditCommands(Session::State& state, CommandSystem& console);
 
 }  // namespace af::console

@@ -197,18 +197,40 @@ void displaceBody(RigidBody& body, const Vec3& linear, const Vec3& angular) {
     }
 }
 
+namespace {
+
+// At a bound within `tolerance` relative, or free.
+LcpRowState stateWithin(Real x, Real lo, Real hi, Real tolerance) {
+    const bool atLower = std::isfinite(lo) && x <= lo + tolerance * std::max(Real(1), std::abs(lo));
+    const bool atUpper = std::isfinite(hi) && x >= hi - tolerance * std::max(Real(1), std::abs(hi));
+    return atLower ? LcpRowState::AtLower : atUpper ? LcpRowState::AtUpper : LcpRowState::Free;
+}
+
+}  // namespace
+
 void statesFromImpulses(const ConstraintRows& rows, std::span<const Real> x, std::span<LcpRowState> states,
                         Real tolerance) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const ConstraintRow& r = rows[i];
-        Real lo = r.lo, hi = r.hi;
-        if (r.frictionSource >= 0) {
-            hi = r.frictionCoefficient * std::abs(x[static_cast<std::size_t>(r.frictionSource)]);
-            lo = -hi;
+        if (r.frictionSource < 0) {
+            states[i] = stateWithin(x[i], r.lo, r.hi, tolerance);
+            continue;
         }
-        const bool atLower = std::isfinite(lo) && x[i] <= lo + tolerance * std::max(Real(1), std::abs(lo));
-        const bool atUpper = std::isfinite(hi) && x[i] >= hi - tolerance * std::max(Real(1), std::abs(hi));
-        states[i] = atLower ? LcpRowState::AtLower : atUpper ? LcpRowState::AtUpper : LcpRowState::Free;
+        const Real box = r.frictionCoefficient * std::abs(x[static_cast<std::size_t>(r.frictionSource)]);
+        states[i] = stateWithin(x[i], -box, box, tolerance);
+    }
+}
+
+void statesFromImpulses(const LcpProblem& problem, std::span<const Real> x, std::span<LcpRowState> states,
+                        Real tolerance) {
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const int source = problem.findex.empty() ? -1 : problem.findex[i];
+        if (source < 0) {
+            states[i] = stateWithin(x[i], problem.lo[i], problem.hi[i], tolerance);
+            continue;
+        }
+        const Real box = problem.mu[i] * std::abs(x[static_cast<std::size_t>(source)]);
+        states[i] = stateWithin(x[i], -box, box, tolerance);
     }
 }
 

@@ -33,6 +33,9 @@ void holdFrictionAtZero(ConstraintRows& rows, std::span<const JointRowRange> ran
 // keeps no states of its own (the tree, PGS) leaves the next solve's guess.
 void statesFromImpulses(const ConstraintRows& rows, std::span<const Real> x, std::span<LcpRowState> states,
                         Real tolerance);
+// The same for an LCP's rows, by its bounds and friction coupling (findex, mu).
+void statesFromImpulses(const LcpProblem& problem, std::span<const Real> x, std::span<LcpRowState> states,
+                        Real tolerance);
 
 // Cdot of a row at the bodies' current velocities.
 inline Real rowVelocity(const ConstraintRow& r, std::span<const RigidBody> bodies) {

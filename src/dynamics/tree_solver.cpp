@@ -407,15 +407,7 @@ void TreeSolver::Impl::solveIteratively(const LcpProblem& problem, TreeSolveResu
     result.status = r.status == LcpStatus::InvalidInput ? r.status : LcpStatus::Solved;
     result.iterative = true;
     result.residual = r.residual;
-    const Real tolerance = lcp.settings().tolerance;
-    for (std::size_t k = 0; k < x.size(); ++k) {
-        const int source = problem.findex.empty() ? -1 : problem.findex[k];
-        const Real box = source >= 0 ? problem.mu[k] * std::abs(x[static_cast<std::size_t>(source)]) : 0;
-        const Real lo = source >= 0 ? -box : problem.lo[k];
-        const Real hi = source >= 0 ? box : problem.hi[k];
-        const Real near = tolerance * std::max(Real(1), std::abs(x[k]));
-        states[k] = x[k] <= lo + near ? LcpRowState::AtLower : x[k] >= hi - near ? LcpRowState::AtUpper : LcpRowState::Free;
-    }
+    statesFromImpulses(problem, x, states, lcp.settings().tolerance);
 }
 
 // The primary rows' impulses for the auxiliary ones in x, and every row's λ.
