@@ -13,6 +13,9 @@ namespace af {
 
 namespace {
 
+// Pivoting solves of a block per solve before its later sweeps relax it (Figure::pivotingFailures).
+constexpr int kPivotingTries = 1000;
+
 int localBody(int body, std::span<const int> localOf) {
     return body == kWorldBody ? kWorldBody : localOf[static_cast<std::size_t>(body)];
 }
@@ -150,6 +153,8 @@ BlockSolveResult FigureBlockSolver::solve(BlockProblem problem, const Constraint
             figure.tree.setStructure(figure.localBodies, figure.localJoints);
             figure.treeReady = true;
         }
+        figure.failedPivots = 0;
+        figure.factored = false;
         figure.tree.factorPrimary(figure.localRows, figure.ranges, figure.localBodies);
     }
     const LcpProblem p = system.problem();
@@ -180,9 +185,9 @@ BlockSolveResult FigureBlockSolver::solve(BlockProblem problem, const Constraint
         if (result.lastChange <= stopChange) break;
     }
 
-    // A block that failed in a sweep but not in its last solve is answered.
+    // A block relaxed after its pivoting failed is answered by a fallback: the solve counts as failed.
     for (const Figure& figure : figures_)
-        if (figure.failed) result.status = LcpStatus::NotConverged;
+        if (figure.failed || !mayPivot(figure, tuning)) result.status = LcpStatus::NotConverged;
 
     // The primary rows' share of the impulses between figures (their responses held the joints
     // through it) joins the blocks' answers: the island applies M⁻¹Jᵀλ of every row.
@@ -225,7 +230,10 @@ BlockSolveResult FigureBlockSolver::solve(BlockProblem problem, const Constraint
 // The block of one figure with the impulses between figures as given: its b less what they
 // change of its rows' velocities (or errors). The sparse path first, as for a figure alone,
 // then the tree solver, then the dense one; false when none solves it (solveDense's fallback
-// answer stands).
+// answer stands). Once its failed pivoting in this solve has spent the block's pivot budget,
+// the later sweeps go straight to the tree with its auxiliary rows relaxed
+// (TreeSolver::setPivoting): the joints stay exact, and the block costs sweeps of its Schur
+// complement instead of thousands of pivots again.
 bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const ConstraintRows& rows,
                                    std::span<const RigidBody> bodies, const SolverTuning& tuning,
                                    BlockSolveResult& result) {
@@ -233,52 +241,33 @@ bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const C
     for (std::size_t k = 0; k < n; ++k)
         figure.b[k] = figure.islandB[k] - rowAlong(rows[figure.rows[k]], betweenLinear_, betweenAngular_);
     figure.lastX.assign(figure.x.begin(), figure.x.end());
-    const LcpProblem p{static_cast<int>(n), {}, figure.b, figure.lo, figure.hi, figure.findex, figure.mu, figure.cfm};
-    const SparseLcpResult sparse = figure.sparse.solve(figure.localRows.all(), figure.responses, p, figure.localBodies,
-                                                       figure.x, figure.states, tuning.exact);
-    if (sparse.status == LcpStatus::Solved) {
-        const std::span<const Vec3> linear = figure.sparse.answerLinearChange();
-        const std::span<const Vec3> angular = figure.sparse.answerAngularChange();
-        for (std::size_t l = 0; l < figure.bodies.size(); ++l) {
-            blockLinear_[static_cast<std::size_t>(figure.bodies[l])] = linear[l];
-            blockAngular_[static_cast<std::size_t>(figure.bodies[l])] = angular[l];
+    if (mayPivot(figure, tuning)) {
+        const LcpProblem p{static_cast<int>(n), {}, figure.b, figure.lo, figure.hi, figure.findex, figure.mu, figure.cfm};
+        const SparseLcpResult sparse = figure.sparse.solve(figure.localRows.all(), figure.responses, p,
+                                                           figure.localBodies, figure.x, figure.states, tuning.exact);
+        if (sparse.status == LcpStatus::Solved) {
+            const std::span<const Vec3> linear = figure.sparse.answerLinearChange();
+            const std::span<const Vec3> angular = figure.sparse.answerAngularChange();
+            for (std::size_t l = 0; l < figure.bodies.size(); ++l) {
+                blockLinear_[static_cast<std::size_t>(figure.bodies[l])] = linear[l];
+                blockAngular_[static_cast<std::size_t>(figure.bodies[l])] = angular[l];
+            }
+            return true;
         }
-        return true;
+        ++result.treeFallbacks;
     }
 
-    // The tree reads b from the bodies' velocities (target − Cdot) or from the rows' errors
-    // (−error): those are set to what the rows between figures make of them.
-    ++result.treeFallbacks;
-    if (!figure.treeReady) {
-        figure.tree.setStructure(figure.localBodies, figure.localJoints);
-        figure.treeReady = true;
-    }
-    TreeSolveResult tree;
-    figure.tree.setPivotRowLimit(pivotRowLimit_, tuning.pgs);
-    std::copy(figure.lastX.begin(), figure.lastX.end(), figure.x.begin());
-    if (problem == BlockProblem::Velocity) {
-        for (std::size_t l = 0; l < figure.bodies.size(); ++l) {
-            const std::size_t b = static_cast<std::size_t>(figure.bodies[l]);
-            figure.localBodies[l].linearVelocity = bodies[b].linearVelocity + betweenLinear_[b];
-            figure.localBodies[l].angularVelocity = bodies[b].angularVelocity + betweenAngular_[b];
-        }
-        figure.tree.factor(figure.localRows, figure.ranges, figure.localBodies, TreeProblems::VelocityAndPosition,
-                           figure.keys);
-        statesFromImpulses(figure.localRows, figure.x, figure.states, tuning.exact.tolerance);
-        tree = figure.tree.solveVelocity(figure.localRows, figure.localBodies, figure.states, figure.x);
-    } else {
-        for (std::size_t k = 0; k < n; ++k)
-            figure.localRows[k].error = -figure.b[k];
-        figure.tree.factor(figure.localRows, figure.ranges, figure.localBodies, TreeProblems::PositionOnly, figure.keys);
-        tree = figure.tree.solvePositionImpulses(figure.localRows);
-    }
+    TreeSolveResult tree = solveByTree(problem, figure, bodies, tuning);
+    if (tree.status != LcpStatus::Solved) figure.failedPivots += tree.pivots;
     // As for a figure alone (Island::solveWithTree): a large block keeps the tree's frozen-box
     // answer rather than pivoting over all its rows.
     if (tree.status == LcpStatus::Solved || (tree.frozenAnswer && n > tuning.denseRescueRows)) {
         const std::span<const Real> lambda = figure.tree.impulses();
         std::copy(lambda.begin(), lambda.end(), figure.x.begin());
     } else {
-        tree.status = solveDense(figure, tuning);
+        const LcpResult dense = solveDense(figure, tuning);
+        tree.status = dense.status;
+        if (dense.status != LcpStatus::Solved) figure.failedPivots += dense.pivots;
     }
     statesFromImpulses(figure.localRows, figure.x, figure.states, tuning.exact.tolerance);
     figureLinear_.assign(figure.bodies.size(), Vec3::Zero());
@@ -291,11 +280,51 @@ bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const C
     return tree.status == LcpStatus::Solved;
 }
 
+// The block by the tree solver, from the block's last answer. The tree reads b from the
+// bodies' velocities (target − Cdot) or from the rows' errors (−error): those are set to what
+// the rows between figures make of them.
+TreeSolveResult FigureBlockSolver::solveByTree(BlockProblem problem, Figure& figure, std::span<const RigidBody> bodies,
+                                               const SolverTuning& tuning) {
+    if (!figure.treeReady) {
+        figure.tree.setStructure(figure.localBodies, figure.localJoints);
+        figure.treeReady = true;
+    }
+    LcpPgsSettings pgs = tuning.pgs;
+    pgs.maxIterations = tuning.blocks.relaxedSweeps;
+    figure.tree.setPivotRowLimit(pivotRowLimit_, pgs);
+    figure.tree.setPivoting(mayPivot(figure, tuning));
+    std::copy(figure.lastX.begin(), figure.lastX.end(), figure.x.begin());
+    if (problem == BlockProblem::Velocity) {
+        for (std::size_t l = 0; l < figure.bodies.size(); ++l) {
+            const std::size_t b = static_cast<std::size_t>(figure.bodies[l]);
+            figure.localBodies[l].linearVelocity = bodies[b].linearVelocity + betweenLinear_[b];
+            figure.localBodies[l].angularVelocity = bodies[b].angularVelocity + betweenAngular_[b];
+        }
+        if (!figure.factored)
+            figure.tree.factor(figure.localRows, figure.ranges, figure.localBodies, TreeProblems::VelocityAndPosition,
+                               figure.keys);
+        figure.factored = true;
+        statesFromImpulses(figure.localRows, figure.x, figure.states, tuning.exact.tolerance);
+        return figure.tree.solveVelocity(figure.localRows, figure.localBodies, figure.states, figure.x);
+    }
+    for (std::size_t k = 0; k < figure.rows.size(); ++k)
+        figure.localRows[k].error = -figure.b[k];
+    if (!figure.factored)
+        figure.tree.factor(figure.localRows, figure.ranges, figure.localBodies, TreeProblems::PositionOnly, figure.keys);
+    figure.factored = true;
+    return figure.tree.solvePositionImpulses(figure.localRows);
+}
+
+// Whether the block's failed pivoting in this solve is still within its budget.
+bool FigureBlockSolver::mayPivot(const Figure& figure, const SolverTuning& tuning) const {
+    return figure.failedPivots < static_cast<long>(tuning.blocks.pivotsPerRow) * static_cast<long>(figure.rows.size());
+}
+
 // A block neither the sparse path nor the tree solved goes to the dense pivoting solve, as a
 // figure alone does (Island::solveVelocities); if that fails too, never its answer: the
 // frozen-box answer (frozen_boxes.h), PGS started from the block's last answer. Returns the
-// dense solve's status.
-LcpStatus FigureBlockSolver::solveDense(Figure& figure, const SolverTuning& tuning) {
+// dense solve's result.
+LcpResult FigureBlockSolver::solveDense(Figure& figure, const SolverTuning& tuning) {
     std::copy(figure.lastX.begin(), figure.lastX.end(), figure.x.begin());
     figure.system.build(figure.localRows, figure.localBodies);
     LcpProblem problem = figure.system.problem();
@@ -306,12 +335,12 @@ LcpStatus FigureBlockSolver::solveDense(Figure& figure, const SolverTuning& tuni
     problem.mu = figure.mu;
     problem.cfm = figure.cfm;
     exact_.setSettings(tuning.exact);
-    const LcpStatus status = exact_.solve(problem, figure.x, figure.states).status;
-    if (status == LcpStatus::Solved) return status;
+    const LcpResult result = exact_.solve(problem, figure.x, figure.states);
+    if (result.status == LcpStatus::Solved) return result;
     std::copy(figure.lastX.begin(), figure.lastX.end(), figure.x.begin());
     pgs_.setSettings(tuning.pgs);
     frozenBoxes_.solve(problem, figure.x, figure.states, exact_, pgs_);
-    return status;
+    return result;
 }
 
 // One Gauss–Seidel sweep over the rows between figures, with the blocks' velocity changes as

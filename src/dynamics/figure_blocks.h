@@ -81,12 +81,21 @@ private:
         bool treeReady = false;
         bool pushed = false;  // an impulse between figures changed since the block's last solve
         bool failed = false;  // the block's last solve found no answer (solveDense's fallback stands)
+        // Pivots of this solve's failed pivoting solves of the block (tree and dense). Past the
+        // budget (SolverTuning::Blocks::pivotsPerRow), the block's later sweeps relax the
+        // tree's auxiliary rows instead: a failed pivoting solve costs thousands of pivots, and
+        // the next sweep's nearly equal block often fails again.
+        long failedPivots = 0;
+        bool factored = false;  // the tree holds this solve's factor(): later sweeps reuse it
     };
     void gatherBlocks(const ConstraintRows& rows, std::span<const JointRowRange> ranges,
                       std::span<const std::uint64_t> keys, RowSystem& system, std::span<const RigidBody> bodies);
     bool solveBlock(BlockProblem problem, Figure& figure, const ConstraintRows& rows, std::span<const RigidBody> bodies,
                     const SolverTuning& tuning, BlockSolveResult& result);
-    LcpStatus solveDense(Figure& figure, const SolverTuning& tuning);
+    TreeSolveResult solveByTree(BlockProblem problem, Figure& figure, std::span<const RigidBody> bodies,
+                                const SolverTuning& tuning);
+    LcpResult solveDense(Figure& figure, const SolverTuning& tuning);
+    bool mayPivot(const Figure& figure, const SolverTuning& tuning) const;
     Real relaxBetween(const ConstraintRows& rows, const RowSystem& system, std::span<Real> x);
     Real respond(std::size_t k, const ConstraintRows& rows, const LcpProblem& p);
     void pushBetween(std::size_t k, const ConstraintRows& rows, const LcpProblem& p, Real impulse);

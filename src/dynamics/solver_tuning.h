@@ -30,6 +30,15 @@ struct SolverTuning {
         int maxSweeps = 100;
         Real velocityShare = 1e-3;
         Real positionShare = 0.01;
+        // Sweeps of a block's Schur complement each time the block is solved, when its auxiliary
+        // rows are relaxed (beyond the pivot row limit, or past its pivot budget below):
+        // warm-started, and inside the sweeps over the blocks, a few suffice.
+        int relaxedSweeps = 10;
+        // Pivots a block may spend in failed pivoting solves (tree and dense) within one solve,
+        // per row of the block, before its later sweeps relax it. Measured: the pile of eight
+        // humanoids that lands on itself (figure_blocks_test) needs up to 392 a row before a
+        // retry settles; hostile soak piles spent up to 8 900 a row (20-37 s a step).
+        int pivotsPerRow = 512;
     } blocks;
 };
 

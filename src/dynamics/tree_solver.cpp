@@ -53,6 +53,7 @@ struct TreeSolver::Impl {
     LcpPgsSolver pgs;
     FrozenBoxFallback frozenBoxes;
     std::size_t pivotRowLimit = 0;  // beyond it, the auxiliary LCP by iterativePgs
+    bool pivoting = true;           // false: every auxiliary LCP by iterativePgs
     LcpPgsSolver iterativePgs;
     Forest forest;
     TreeFactor tree;
@@ -107,6 +108,8 @@ void TreeSolver::setPivotRowLimit(std::size_t rows, const LcpPgsSettings& pgs) {
     impl_->pivotRowLimit = rows;
     impl_->iterativePgs.setSettings(pgs);
 }
+
+void TreeSolver::setPivoting(bool allowed) { impl_->pivoting = allowed; }
 
 void TreeSolver::setStructure(std::span<const RigidBody> bodies, std::span<const Joint> joints) {
     impl_->forest = buildForest(bodies, joints);
@@ -370,7 +373,7 @@ TreeSolveResult TreeSolver::Impl::solve(const ConstraintRows& rows, WarmStart& s
         }
         problem.cfm = cfm;
         const bool coupled = !problem.findex.empty();
-        if (pivotRowLimit > 0 && n > pivotRowLimit) {
+        if (!pivoting || (pivotRowLimit > 0 && n > pivotRowLimit)) {
             solveIteratively(problem, result);
             remember(rows, start);
             return finish(rows, sumPerBody, result);

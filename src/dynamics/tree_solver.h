@@ -68,6 +68,9 @@ public:
     /// a few hundred contacts take thousands (a 57-body figure lying flat: seconds a step). The
     /// joints stay exact; the contacts and limits are as converged as `pgs` leaves them.
     void setPivotRowLimit(std::size_t rows, const LcpPgsSettings& pgs = {});
+    /// false: every auxiliary LCP is solved as one beyond the pivot row limit, whatever its size
+    /// (a caller whose pivoting of these rows has just failed; see FigureBlockSolver).
+    void setPivoting(bool allowed);
 
     /// Chooses the primary joints and orders the tree. `bodies` decides which bodies are static
     /// (inverseMass 0, treated as the world); joints' body indices refer to it. Throws
