@@ -39,7 +39,31 @@ struct Options {
     std::string map;
     bool list = false;
     double maxWall = 20;
+    std::vector<std::string> failOn;  // kinds of failure that set the exit status; empty: all
 };
+
+// The kinds of failure a drop can have: the table's name for each and the name --fail-on takes.
+struct FailureKind {
+    const char* row;
+    const char* option;
+    bool (*has)(const DropResult&);
+};
+constexpr FailureKind kFailureKinds[] = {
+    {"NaN/inf", "nan", [](const DropResult& r) { return r.nonFinite; }},
+    {"explosion", "explosion", [](const DropResult& r) { return r.exploded(); }},
+    {"put back", "put-back", [](const DropResult& r) { return r.restored > 0; }},
+    {"rested open", "rested-open", [](const DropResult& r) { return r.restedOpen(); }},
+    {"threw", "threw", [](const DropResult& r) { return !r.threw.empty(); }},
+    {"refused", "refused", [](const DropResult& r) { return !r.rejected.empty(); }},
+};
+
+bool failsExitStatus(const DropResult& r, const Options& o) {
+    for (const FailureKind& kind : kFailureKinds)
+        if ((o.failOn.empty() || std::find(o.failOn.begin(), o.failOn.end(), kind.option) != o.failOn.end()) &&
+            kind.has(r))
+            return true;
+    return false;
+}
 
 std::vector<af::Polytope> loadBrushes(const std::string& path) {
     const af::MapParseResult parsed = af::loadMapFile(path);
@@ -111,23 +135,15 @@ void printTable(const std::vector<DropResult>& results) {
     };
     for (const auto& [what, key] : cases)
         if (const DropResult* r = worst(results, key)) printRow(what, *r);
-    const std::pair<const char*, std::function<bool(const DropResult&)>> failures[] = {
-        {"NaN/inf", [](const DropResult& r) { return r.nonFinite; }},
-        {"explosion", [](const DropResult& r) { return r.exploded(); }},
-        {"put back", [](const DropResult& r) { return r.restored > 0; }},
-        {"rested open", [](const DropResult& r) { return r.restedOpen(); }},
-        {"threw", [](const DropResult& r) { return !r.threw.empty(); }},
-        {"refused", [](const DropResult& r) { return !r.rejected.empty(); }},
-    };
     constexpr int kShown = 10;
-    for (const auto& [what, is] : failures) {
+    for (const FailureKind& kind : kFailureKinds) {
         int shown = 0, more = 0;
         for (const DropResult& r : results) {
-            if (!is(r)) continue;
-            if (shown++ < kShown) printRow(what, r);
+            if (!kind.has(r)) continue;
+            if (shown++ < kShown) printRow(kind.row, r);
             else ++more;
         }
-        if (more) std::printf("%-18s and %d more\n", what, more);
+        if (more) std::printf("%-18s and %d more\n", kind.row, more);
     }
     for (const DropResult& r : results)
         if (r.tooSlow)
@@ -208,7 +224,7 @@ int soak(const Options& o) {
         if (!r.rejected.empty()) std::printf("  refused: %s\n", r.rejected.c_str());
         printHeader();
         printRow("replay", r);
-        return r.failed() || !r.rejected.empty() ? 1 : 0;
+        return failsExitStatus(r, o) ? 1 : 0;
     }
 
     std::string names;
@@ -221,7 +237,7 @@ int soak(const Options& o) {
     if (o.list) std::printf("\n");
     printTable(results);
     printTotals(results, o.seconds, wall);
-    const bool failed = std::any_of(results.begin(), results.end(), [](const DropResult& r) { return r.failed() || !r.rejected.empty(); });
+    const bool failed = std::any_of(results.begin(), results.end(), [&](const DropResult& r) { return failsExitStatus(r, o); });
     return failed ? 1 : 0;
 }
 
@@ -240,6 +256,11 @@ int main(int argc, char** argv) {
     app.add_option("--max-wall", o.maxWall, "wall seconds a drop may take before it stops as too slow (0: no limit; "
                                             "results then depend on the machine)")->check(CLI::Range(0.0, 1e9))->capture_default_str();
     app.add_flag("--list", o.list, "print every drop's row before the table");
+    std::vector<std::string> kindNames;
+    for (const FailureKind& kind : kFailureKinds) kindNames.emplace_back(kind.option);
+    app.add_option("--fail-on", o.failOn, "kinds of failure that make the exit status 1 (default: all)")
+        ->delimiter(',')
+        ->check(CLI::IsMember(kindNames));
     if (const auto exitStatus = af::tools::parseCommandLine(app, argc, argv, "af-soak")) return *exitStatus;
     try {
         return soak(o);

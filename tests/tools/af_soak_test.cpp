@@ -98,8 +98,22 @@ TEST(AfSoak, TwoJobsGiveTheSameRowsAsOne) {
     EXPECT_EQ(rowsOf(one.out, "drop"), rowsOf(two.out, "drop"));
 }
 
+// CI's soak fails on what must never happen (NaN, explosions, exceptions, refused figures), not on
+// drops the guard put back or that rested open: those are findings of hostile starts.
+TEST(AfSoak, FailOnChoosesWhichFailuresSetTheExitStatus) {
+    const SoakRun all = afSoak(kShortSoak);
+    ASSERT_FALSE(rowsOf(all.out, "put back").empty()) << "seeds 45..55 no longer have a drop put back\n" << all.out;
+    EXPECT_EQ(all.status, 1) << all.out;
+    const SoakRun putBack = afSoak(std::string(kShortSoak) + " --fail-on put-back");
+    EXPECT_EQ(putBack.status, 1) << putBack.out;
+    const SoakRun hard = afSoak(std::string(kShortSoak) + " --fail-on nan,explosion,threw,refused");
+    EXPECT_EQ(hard.status, 0) << hard.out;
+    EXPECT_EQ(rowsOf(hard.out, "drop"), rowsOf(all.out, "drop")) << "--fail-on changed the drops";
+}
+
 TEST(AfSoak, BadUsageExitsTwoWithAMessage) {
-    for (const char* arguments : {"--drops 0", "--no-such-option", "--seconds -1", "--jobs 0", "--max-wall -1", "--map /no/such.map"}) {
+    for (const char* arguments : {"--drops 0", "--no-such-option", "--seconds -1", "--jobs 0", "--max-wall -1", "--map /no/such.map",
+                                  "--fail-on nothing"}) {
         const SoakRun run = afSoak(arguments);
         EXPECT_EQ(run.status, 2) << arguments << "\n" << run.out;
         EXPECT_NE(run.out.find("af-soak"), std::string::npos) << arguments << "\n" << run.out;
