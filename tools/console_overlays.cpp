@@ -29,10 +29,13 @@ constexpr Colour kVelocity = {0.85f, 0.08f, 0.10f};
 constexpr Colour kName = {0.08f, 0.08f, 0.10f};
 constexpr Colour kHighlight = {1.00f, 0.15f, 0.80f};
 constexpr Colour kInertia = {0.45f, 0.20f, 0.75f};
+constexpr Colour kContact = {1.00f, 0.08f, 0.08f};  // points and normals: a red no body or other mark is
+constexpr Colour kImpulse = {1.00f, 0.60f, 0.00f};
 
 constexpr Real kAxisLength = 5;   // a joint's axis, each way from the anchor
 constexpr Real kLimitSize = 7;    // a limit's cone, pyramid or fan, from the anchor
 constexpr Real kVelocityTime = 0.1;  // s: an arrow reaches where its body will be this much later
+constexpr Real kContactNormalLength = 4;
 constexpr Real kPi = std::numbers::pi_v<Real>;
 
 // A body's principal axes of inertia, each drawn both ways from its centre of mass as far as its
@@ -45,6 +48,26 @@ void addInertiaAxes(render::Overlay& o, const RigidBody& body) {
         const Real gyration = std::sqrt(std::max(Real(0), principal.eigenvalues()[k]) * body.inverseMass);
         const Vec3 axis = gyration * principal.eigenvectors().col(k);
         o.lines.push_back({body.position - axis, body.position + axis, kInertia, 1.5, false});
+    }
+}
+
+// Each point of the last step's contacts as a dot with its normal, a short arrow, over a wider
+// line along the normal as long as the point's normal impulse (kContactImpulseLength). `active`:
+// not those whose body A (always a body) belongs to a figure at rest.
+void addContacts(render::Overlay& o, const World& world, bool active) {
+    const std::vector<ContactImpulse> impulses = world.contactImpulses();
+    std::size_t i = 0;
+    for (const BodyContact& c : world.contacts()) {
+        const FigureId figure = world.figureOf(c.bodyA);
+        const bool shown = !active || figure.value < 0 || !world.figureAtRest(figure);
+        for (int k = 0; k < c.manifold.count; ++k, ++i) {
+            if (!shown) continue;
+            const Vec3& p = c.manifold.points[std::size_t(k)].point;
+            if (impulses[i].normal > 0)
+                o.lines.push_back({p, p + kContactImpulseLength * impulses[i].normal * c.manifold.normal, kImpulse, 4.0, false});
+            o.lines.push_back({p, p + kContactNormalLength * c.manifold.normal, kContact, 1.5, true});
+            o.dots.push_back({p, kContact, 3});
+        }
     }
 }
 
@@ -169,6 +192,7 @@ void addShowOverlays(render::RenderScene& scene, const World& world, const ShowF
             o.labels.push_back({top + Vec3(0, 0, 2 * kAxisLength), "total mass " + fixed(total), kName});
         }
     }
+    if (flags.contacts) addContacts(o, world, flags.active);
 }
 
 }  // namespace af::console

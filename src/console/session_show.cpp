@@ -37,6 +37,9 @@ constexpr ShowCVar kShowCVars[] = {
     {"af_showConstraintNames", &ShowFlags::constraintNames, "print the constraint names after a step; screenshot labels the anchors"},
     {"af_showLimits", &ShowFlags::limits, "print each limited joint's angles against its limits after a step; screenshot draws the limits"},
     {"af_showTrees", &ShowFlags::trees, "print each ragdoll's body tree after a step; screenshot draws parent to child lines"},
+    {"af_showContacts", &ShowFlags::contacts,
+     "print each contact point with the impulse the last step's velocity solve applied there (mass units * units/s) after a "
+     "step; screenshot draws the points, their normals (red) and the normal impulses along them (orange, 1 unit per 50)"},
     {"af_showActive", &ShowFlags::active, "the other af_show* and af_highlight* only for ragdolls not at rest"},
     {"af_showTimings", &ShowFlags::timings, "print the steps' wall-clock cost after step, run and waitRest"},
 };
@@ -57,6 +60,13 @@ struct Shown {
         return worldBody == kWorldBody ? "world" : figure.bodies[std::size_t(worldBody - range.firstBody)].name;
     }
     const RigidBody& body(int b) const { return world.bodies()[std::size_t(range.firstBody + b)]; }
+    // Body B of a contact of ours: the world, one of our bodies, or another figure's body.
+    std::string contactPartner(const BodyContact& c) const {
+        if (c.bodyB == kStaticWorld) return "world";
+        const FigureId other = world.figureOf(c.bodyB);
+        if (other.value < 0) return "body " + std::to_string(c.bodyB);
+        return world.definition(other).bodies[std::size_t(c.bodyB - world.range(other).firstBody)].name;
+    }
 };
 
 // `kindWidth` lines up the bodies of a list (the longest kind, ballAndSocketJoint, is 18 letters).
@@ -144,6 +154,17 @@ std::vector<std::pair<bool ShowFlags::*, Block>> blocks() {
              for (const Joint* j : joints)
                  if (const auto readings = limitReadings(*j, e.world.bodies()); !readings.empty())
                      out.info("  " + padded(j->name, width) + "  " + limitText(readings));
+         }},
+        {&ShowFlags::contacts, [](const Shown& e, const Output& out) {
+             out.info("af_showContacts " + e.entity.name + " (normal impulse, friction impulse; mass units * units/s):");
+             const std::vector<ContactImpulse> impulses = e.world.contactImpulses();
+             std::size_t i = 0;
+             for (const BodyContact& c : e.world.contacts())
+                 for (int k = 0; k < c.manifold.count; ++k, ++i)
+                     if (e.world.figureOf(c.bodyA) == e.entity.figure)
+                         out.info("  " + padded(e.bodyName(c.bodyA), e.nameWidth) + " - " + e.contactPartner(c) + "  at " +
+                                  vec(c.manifold.points[std::size_t(k)].point) + "  " + fixed(impulses[i].normal) + ", " +
+                                  fixed(impulses[i].friction.norm()));
          }},
         {&ShowFlags::trees, [](const Shown& e, const Output& out) {
              out.info("af_showTrees " + e.entity.name + ":");

@@ -2,9 +2,9 @@
 // Doom's debug display cvars (docs/doom-physics.md §5.3): af_showBodies, af_showBodyNames,
 // af_showMass, af_showTotalMass, af_showInertia, af_showVelocity, af_showConstraints,
 // af_showConstraintNames, af_showLimits, af_showTrees, af_showActive, af_highlightBody,
-// af_highlightConstraint and af_showTimings. Our console has no frame to draw into, so each
-// prints what it shows after every command that moves the clock, and af-console's screenshot
-// draws those that have a picture.
+// af_highlightConstraint and af_showTimings; and af_showContacts, which Doom lacks. Our console
+// has no frame to draw into, so each prints what it shows after every command that moves the
+// clock, and af-console's screenshot draws those that have a picture.
 
 #include "console/command_system.h"
 #include "console/session.h"
@@ -16,7 +16,7 @@ namespace af::console {
 // The cvars' values, read at once.
 struct ShowFlags {
     bool bodies = false, bodyNames = false, mass = false, totalMass = false, inertia = false, velocity = false;
-    bool constraints = false, constraintNames = false, limits = false, trees = false;
+    bool constraints = false, constraintNames = false, limits = false, trees = false, contacts = false;
     bool active = false;   // the others only for figures not at rest
     bool timings = false;
     std::string highlightBody, highlightConstraint;  // a body's or a constraint's name, or empty

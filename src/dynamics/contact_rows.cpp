@@ -113,16 +113,11 @@ Real velocityAlong(const ContactView& c, const ContactSide& a, const ContactSide
     // One loop over the directions, not a call per row: the row writer is inlined once.
     Vec3 directions[2];
     int count = 2;
-    const Vec3 along = c.frictionDirection ? Vec3(*c.frictionDirection - c.normal * c.normal.dot(*c.frictionDirection))
-                                           : Vec3::Zero();
-    if (c.frictionDirection && along.norm() > 1e-9) {
-        directions[0] = along.normalized();
-        count = 1;
-    } else if (c.tangents) {
+    if (c.tangents && !c.frictionDirection) {
         directions[0] = c.tangents[0];
         directions[1] = c.tangents[1];
     } else {
-        tangents(c.normal, directions[0], directions[1]);
+        count = frictionDirections(c.normal, c.frictionDirection, directions);
     }
     const RowRest friction{.frictionSource = normalIndex, .frictionCoefficient = c.friction};
     for (int k = 0; k < count; ++k) addRowAlong(c, a, b, directions[k], settings.relativeCfm, friction, out);
@@ -153,6 +148,18 @@ const Mat3& inverseInertiaOf(int body, std::span<const Mat3> inverseInertiaWorld
 }
 
 }  // namespace
+
+int frictionDirections(const Vec3& n, const Vec3* frictionDirection, Vec3 (&out)[2]) {
+    if (frictionDirection) {
+        const Vec3 along = *frictionDirection - n * n.dot(*frictionDirection);
+        if (along.norm() > 1e-9) {
+            out[0] = along.normalized();
+            return 1;
+        }
+    }
+    tangents(n, out[0], out[1]);
+    return 2;
+}
 
 int writeContactRows(const Contact& c, std::span<const RigidBody> bodies, const ContactSettings& settings,
                      ConstraintRows& out) {

@@ -35,6 +35,11 @@ struct Contact {
     std::optional<Real> approachVelocity;
 };
 
+// The directions of a contact's friction rows: its friction direction (world, or null) projected
+// into the plane of the normal n, unless that leaves nothing of it; else two unit tangents
+// completing n to a right-handed basis. Returns how many (1 or 2).
+int frictionDirections(const Vec3& n, const Vec3* frictionDirection, Vec3 (&out)[2]);
+
 // Appends the rows of one contact; returns the index of its normal row.
 int writeContactRows(const Contact& contact, std::span<const RigidBody> bodies, const ContactSettings& settings,
                      ConstraintRows& out);

@@ -24,6 +24,14 @@ using contact_detail::toWorld;
 
 }  // namespace
 
+std::uint64_t contactPairKey(const BodyContact& c) {
+    return mix(mix(static_cast<std::uint64_t>(c.bodyA)) ^
+               static_cast<std::uint64_t>(c.bodyB == kStaticWorld ? (1ull << 32) + static_cast<std::uint64_t>(c.staticShape)
+                                                                  : static_cast<std::uint64_t>(c.bodyB)));
+}
+
+std::uint64_t contactPointKey(std::uint64_t pairKey, const ManifoldPoint& point) { return mix(pairKey ^ point.id); }
+
 void ContactSet::gather(const std::vector<BodyContact>& manifolds, std::span<const RigidBody> bodies,
                         std::span<const BodyMaterial> materials) {
     points_.clear();
@@ -36,9 +44,7 @@ void ContactSet::add(const BodyContact& c, std::span<const RigidBody> bodies, st
     // Doom: μ is body A's, lowered to B's when B's is lower.
     Real friction = material.friction;
     if (bodyB != kWorldBody) friction = std::min(friction, materials[static_cast<std::size_t>(bodyB)].friction);
-    const std::uint64_t pairKey = mix(mix(static_cast<std::uint64_t>(c.bodyA)) ^
-                                      static_cast<std::uint64_t>(c.bodyB == kStaticWorld ? (1ull << 32) + static_cast<std::uint64_t>(c.staticShape)
-                                                                                         : static_cast<std::uint64_t>(c.bodyB)));
+    const std::uint64_t pairKey = contactPairKey(c);
     const RigidBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
     const RigidBody* b = bodyOrNull(bodies, bodyB);
     const Vec3& n = c.manifold.normal;
@@ -65,7 +71,7 @@ void ContactSet::add(const BodyContact& c, std::span<const RigidBody> bodies, st
         p.friction = friction;
         p.restitution = material.bounciness;
         p.frictionDirection = material.frictionDirection;
-        p.key = mix(pairKey ^ m.id);
+        p.key = contactPointKey(pairKey, m);
         // v_A − 0 is v_A bit for bit, so the world's side is left out.
         p.approachVelocity = b ? n.dot(a.velocityAt(m.point) - b->velocityAt(m.point)) : n.dot(a.velocityAt(m.point));
     }

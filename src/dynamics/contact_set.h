@@ -57,6 +57,11 @@ inline Vec3 toWorld(const RigidBody* body, const Vec3& local) {
 
 }  // namespace contact_detail
 
+// The key of a manifold's point: the same for the same pair and feature step after step
+// (ContactPoint::key; its rows are keyed key + 0 for the normal, + 1 and + 2 for friction).
+std::uint64_t contactPairKey(const BodyContact& manifold);
+std::uint64_t contactPointKey(std::uint64_t pairKey, const ManifoldPoint& point);
+
 // The point's depth at the bodies' current poses: −n·(pA − pB).
 Real currentDepth(const ContactPoint& point, std::span<const RigidBody> bodies);
 // Appends every point's rows at the bodies' current poses, and one key per row (the point's key

@@ -57,6 +57,18 @@ int WarmStartCache::recall(std::span<const std::uint64_t> keys, std::span<LcpRow
     return found;
 }
 
+// The asked keys sorted, and every entry looked for among them: no state of the cache is touched.
+void WarmStartCache::impulsesOf(std::span<const std::uint64_t> keys, std::span<Real> impulses) const {
+    std::vector<std::pair<std::uint64_t, std::size_t>> asked(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) asked[i] = {keys[i], i};
+    std::sort(asked.begin(), asked.end());
+    std::fill(impulses.begin(), impulses.end(), Real(0));
+    for (const Entry& e : entries_)
+        for (auto k = std::lower_bound(asked.begin(), asked.end(), std::make_pair(e.key, std::size_t(0)));
+             k != asked.end() && k->first == e.key; ++k)
+            impulses[k->second] = e.impulse;
+}
+
 void WarmStartCache::forgetNonFinite() {
     std::erase_if(entries_, [](const Entry& e) { return !std::isfinite(e.impulse); });
     indexChecked_ = false;

@@ -25,6 +25,9 @@ public:
                   std::span<const Real> impulses);
     // Fills the guesses of `keys`; returns how many rows were found.
     int recall(std::span<const std::uint64_t> keys, std::span<LcpRowState> states, std::span<Real> impulses) const;
+    // The impulse each of `keys` ended with, 0 for a key not remembered. Builds no index: for
+    // queries between steps (World::contactImpulses), which several threads may make at once.
+    void impulsesOf(std::span<const std::uint64_t> keys, std::span<Real> impulses) const;
     // Keeps the index by key, so that one after the same adds as last time has nothing to rebuild.
     void clear() {
         entries_.clear();

@@ -130,7 +130,7 @@ public:
         const int hi = std::max({r, g, b}), lo = std::min({r, g, b});
         return hi == 0 ? 0 : double(hi - lo) / hi;
     }
-    // The contact overlay's red (view_contacts), which no body, brush or other mark is.
+    // The contact overlay's red (af_showContacts: points and normals), which no body, brush or other mark is.
     bool contactRedAt(int x, int y) const {
         if (x < 0 || y < 0 || x >= width() || y >= height()) return false;
         const std::uint32_t p = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(surface_) +
@@ -199,7 +199,7 @@ TEST(AfView, ScreenshotShowsTheFigureWhereItsBodiesProject) {
 
 TEST(AfView, ContactOverlayMarksWhereTheFeetTouchTheFloor) {
     SKIP_WITHOUT_XVFB();
-    RUN_AF_VIEW(run, kSpawn + kNoSkeleton + kCamera.command() + "view_contacts 1\n");
+    RUN_AF_VIEW(run, kSpawn + kNoSkeleton + kCamera.command() + "af_showContacts 1\n");
     ASSERT_EQ(run.status, 0) << run.out << run.err;
     const Picture picture(run.picture);
     ASSERT_TRUE(picture.ok());

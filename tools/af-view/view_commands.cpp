@@ -26,7 +26,6 @@ std::string format(const Vec3& v) {
 void Viewer::registerViewCommands() {
     console::CommandSystem& c = *console_;
     c.addCVar(console::boolCVar("view_skeleton", true, "draw the skeleton the bodies drive"));
-    c.addCVar(console::boolCVar("view_contacts", false, "draw the contact points of the last step, with their normals (red)"));
     c.addCVar(console::boolCVar("view_rest", false, "grey out the figures at rest"));
     c.addCVar(console::boolCVar("view_fly", false,
                                 "fly camera: WASD to move, Q and E down and up, Shift faster, mouse look with the right button held; "

@@ -23,7 +23,6 @@ constexpr int kMaxStepsPerFrame = 4;  // a slow frame drops time rather than fal
 constexpr double kStepsPerSecond = 60;  // Doom's frame; af_timeScale scales each step's length
 constexpr double kConsoleHeight = 240;  // framebuffer pixels, at most 40 % of the window
 
-constexpr Real kContactNormalLength = 4;  // units
 constexpr Real kFlySpeed = 0.75;  // the fly camera's speed: distances to its target per second
 constexpr float kFigurePanelWidth = 380;  // points
 
@@ -136,13 +135,6 @@ void Viewer::addViewOverlays(render::RenderScene& scene) const {
                 }
         }
     }
-    if (cvarOn("view_contacts"))
-        for (const BodyContact& contact : world.contacts())
-            for (int k = 0; k < contact.manifold.count; ++k) {
-                const Vec3& p = contact.manifold.points[std::size_t(k)].point;
-                scene.overlay.dots.push_back({p, kContactColour, 3});
-                scene.overlay.lines.push_back({p, p + kContactNormalLength * contact.manifold.normal, kContactColour, 1.5, true});
-            }
 }
 
 OrbitCamera& Viewer::camera() {
@@ -266,7 +258,8 @@ void Viewer::drawControls() {
     };
     toggle("skeleton", "view_skeleton");
     ImGui::SameLine();
-    toggle("contacts", "view_contacts");
+    toggle("contacts", "af_showContacts");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("points, normals (red) and the last step's normal impulses (orange)");
     ImGui::SameLine();
     toggle("grey at rest", "view_rest");
     toggle("constraints", "af_showConstraints");

@@ -20,9 +20,6 @@
 
 namespace af::view {
 
-// The colour of the contact overlay (view_contacts): points and their normals.
-inline constexpr render::Colour kContactColour = {1.0f, 0.08f, 0.08f};
-
 // What the viewer starts with (and what Reset runs again).
 struct Startup {
     std::vector<std::filesystem::path> roots;
@@ -50,7 +47,7 @@ public:
 private:
     void registerViewCommands();  // view_commands.cpp
     bool cvarOn(std::string_view name) const;
-    // The viewer's own overlays: contacts (view_contacts), figures at rest greyed (view_rest).
+    // The viewer's own overlay: figures at rest greyed (view_rest).
     void addViewOverlays(render::RenderScene& scene) const;
     void handleMouse();
     // The left button pressed on the ray: grab the body under it, which the figure panel selects.

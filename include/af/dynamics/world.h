@@ -162,6 +162,13 @@ struct StepReport {
     std::vector<StuckFigure> stuck;  // reported in the step it stopped stuck, once until it frees
 };
 
+// What the last step's velocity solve applied at one contact point (World::contactImpulses), on
+// body A; body B took the opposite. An impulse, not a force: mass units · units/s.
+struct ContactImpulse {
+    Real normal = 0;               // along the manifold's normal (B towards A), ≥ 0: it only pushes
+    Vec3 friction = Vec3::Zero();  // world, in the contact plane
+};
+
 // A body of a figure: the figure and the body's index in its definition.
 struct BodyRef {
     FigureId figure;
@@ -252,10 +259,19 @@ public:
     // Removes a static shape of the collision world and wakes every figure (what lay on it falls).
     void removeStatic(int staticShape);
 
-    // Contact manifolds found by the last step (at its start poses).
+    // Contact manifolds of the last step, looked for again at the poses it ended with (what
+    // touches there; the step's own solve used those found at its start poses, with a margin).
     const std::vector<BodyContact>& contacts() const;
     // Deepest penetration of the last step's contact points at the current poses (0 if none).
     Real maxPenetration() const;
+    // The impulse each point of contacts() took in the last step's velocity solve (its last
+    // substep's), manifold by manifold in their order, each manifold's points in theirs: a box
+    // of mass m resting on the floor takes m·|g|·timeStep/substeps over its points. A point that
+    // solve did not have reports zero: one found only at the step's end poses, or apart and left
+    // out of it. Resting figures are not solved, and their contacts leave contacts() after the
+    // step they came to rest in. Friction is along the rows' directions (tangents of the normal,
+    // or body A's frictionDirection as A is turned now).
+    std::vector<ContactImpulse> contactImpulses() const;
 
     // Every body of the world in one array (figures in spawn order), and the joints; a body's
     // index changes when a figure before it is removed.
