@@ -52,23 +52,15 @@ void World::State::rememberBeforeStep() {
 // one group for the guard: a contact between them may have handed energy from one to the other.
 // Groups are figure slots, and one more for the bodies of no figure.
 void World::State::joinTouchingForGuard() {
-    const int none = static_cast<int>(figures.size());
-    for (const ContactPoint& p : contacts.points()) {
-        if (p.bodyA == kWorldBody || p.bodyB == kWorldBody) continue;
-        const int fa = bodyFigure[static_cast<std::size_t>(p.bodyA)], fb = bodyFigure[static_cast<std::size_t>(p.bodyB)];
-        joinSets(before.touched, fa >= 0 ? fa : none, fb >= 0 ? fb : none);
-    }
+    for (const ContactPoint& p : contacts.points())
+        if (p.bodyA != kWorldBody && p.bodyB != kWorldBody) joinSets(before.touched, guardGroupOf(p.bodyA), guardGroupOf(p.bodyB));
 }
 
 void World::State::restoreInvalidMotion() {
     const std::size_t figureCount = figures.size();
-    const auto groupOfBody = [&](int body) {
-        const int f = bodyFigure[static_cast<std::size_t>(body)];
-        return f >= 0 ? f : static_cast<int>(figureCount);
-    };
     std::vector<int>& touched = before.touched;
     for (const Joint& j : joints)
-        if (j.bodyA != kWorldBody && j.bodyB != kWorldBody) joinSets(touched, groupOfBody(j.bodyA), groupOfBody(j.bodyB));
+        if (j.bodyA != kWorldBody && j.bodyB != kWorldBody) joinSets(touched, guardGroupOf(j.bodyA), guardGroupOf(j.bodyB));
 
     std::vector<GroupEnergy>& energy = before.energy;
     energy.assign(figureCount + 1, GroupEnergy{});
@@ -79,7 +71,7 @@ void World::State::restoreInvalidMotion() {
         if (!bodyAwake[i]) continue;  // a resting body did not move
         const RigidBody& b0 = before.bodies[i];
         const RigidBody& b1 = bodies[i];
-        GroupEnergy& e = of(groupOfBody(static_cast<int>(i)));
+        GroupEnergy& e = of(guardGroupOf(static_cast<int>(i)));
         if (!finiteMotion(b1)) {
             e.nonFinite = true;
             continue;
@@ -94,7 +86,7 @@ void World::State::restoreInvalidMotion() {
     }
     for (const Joint& j : joints) {
         if (j.type != ConstraintType::Spring) continue;
-        GroupEnergy& e = of(groupOfBody(j.bodyA != kWorldBody ? j.bodyA : j.bodyB));
+        GroupEnergy& e = of(guardGroupOf(j.bodyA != kWorldBody ? j.bodyA : j.bodyB));
         e.before += springPotentialEnergy(j, before.bodies);
         e.after += springPotentialEnergy(j, bodies);
     }
@@ -123,8 +115,9 @@ void World::State::restoreInvalidMotion() {
     // their solvers and warm starts. The contacts need nothing: the figures that rest now make
     // the next search a whole one.
     for (std::size_t k = 0; k < islandCount; ++k) {
-        const std::vector<int>& ids = members[k].bodies;
-        if (std::any_of(ids.begin(), ids.end(), [&](int b) { return bodyAwake[static_cast<std::size_t>(b)] == 0; }))
+        const std::vector<int>& islandBodies = members[k].bodies;
+        if (std::any_of(islandBodies.begin(), islandBodies.end(),
+                        [&](int b) { return bodyAwake[static_cast<std::size_t>(b)] == 0; }))
             islands[k] = Island{};
     }
     warmStart.forgetNonFinite();
@@ -134,8 +127,7 @@ void World::State::restoreInvalidMotion() {
 // still; a figure at rest and let go by the drag.
 void World::State::restoreFigure(int g) {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const int f = bodyFigure[i];
-        if ((f >= 0 ? f : static_cast<int>(figures.size())) != g) continue;
+        if (guardGroupOf(static_cast<int>(i)) != g) continue;
         bodies[i] = before.bodies[i];
         bodies[i].linearVelocity.setZero();
         bodies[i].angularVelocity.setZero();
@@ -144,8 +136,7 @@ void World::State::restoreFigure(int g) {
         const Joint& j = joints[k];
         const int body = j.bodyA != kWorldBody ? j.bodyA : j.bodyB;
         if (body == kWorldBody) continue;
-        const int f = bodyFigure[static_cast<std::size_t>(body)];
-        if ((f >= 0 ? f : static_cast<int>(figures.size())) == g) joints[k].lastImpulse = before.jointImpulses[k];
+        if (guardGroupOf(body) == g) joints[k].lastImpulse = before.jointImpulses[k];
     }
     if (g == static_cast<int>(figures.size())) return;
     if (drag && slotOfId[static_cast<std::size_t>(drag->body.figure.value)] == g) {

@@ -161,6 +161,11 @@ struct World::State {
     void joinTouchingForGuard();
     void restoreInvalidMotion();
     void restoreFigure(int slot);  // figures.size(): the bodies of no figure
+    // The guard's group of a body: its figure's slot, or figures.size() for a body of no figure.
+    int guardGroupOf(int body) const {
+        const int f = bodyFigure[static_cast<std::size_t>(body)];
+        return f >= 0 ? f : static_cast<int>(figures.size());
+    }
 
     void substep(Real dt);
     void findContacts(Real dt);
