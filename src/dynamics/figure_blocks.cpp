@@ -13,9 +13,6 @@ namespace af {
 
 namespace {
 
-// Pivoting solves of a block per solve before its later sweeps relax it (Figure::pivotingFailures).
-constexpr int kPivotingTries = 1000;
-
 int localBody(int body, std::span<const int> localOf) {
     return body == kWorldBody ? kWorldBody : localOf[static_cast<std::size_t>(body)];
 }

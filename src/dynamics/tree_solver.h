@@ -43,8 +43,9 @@ struct TreeSolveResult {
     int  pivots = 0;                       ///< LcpResult::pivots of the auxiliary LCP
     int  couplingPasses = 0;
     Real residual = 0;                     ///< natural residual of the auxiliary LCP (lcp.h)
-    bool iterative = false;                ///< the auxiliary LCP was beyond the pivot row limit and
-                                           ///< solved by projected Gauss–Seidel (its status Solved)
+    bool iterative = false;                ///< the auxiliary LCP was beyond the pivot row limit (or
+                                           ///< pivoting was off) and solved by projected
+                                           ///< Gauss–Seidel (its status Solved)
     bool frozenAnswer = false;             ///< NotConverged, and the auxiliary rows hold the
                                            ///< frozen-box answer (frozen_boxes.h) instead of the
                                            ///< failed solve's: impulses() is usable, its joints held
@@ -69,7 +70,7 @@ public:
     /// joints stay exact; the contacts and limits are as converged as `pgs` leaves them.
     void setPivotRowLimit(std::size_t rows, const LcpPgsSettings& pgs = {});
     /// false: every auxiliary LCP is solved as one beyond the pivot row limit, whatever its size
-    /// (a caller whose pivoting of these rows has just failed; see FigureBlockSolver).
+    /// (a caller whose pivoting of these rows failed too often; see FigureBlockSolver).
     void setPivoting(bool allowed);
 
     /// Chooses the primary joints and orders the tree. `bodies` decides which bodies are static
