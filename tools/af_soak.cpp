@@ -2,9 +2,10 @@
 // table of the worst cases, each with the seed that replays it.
 //
 // Exit status: 0 when no drop failed; 1 when a drop saw a NaN or an infinity, exploded (kinetic
-// energy beyond kExplosionRatio times what the start and gravity could supply), rested with a
-// joint open or a contact deep, or the library threw or refused a figure the soak made valid; 2
-// for bad usage or bad input (an unknown option, a map that does not load).
+// energy beyond kExplosionRatio times what the start and gravity could supply), had a figure put
+// back by the world's guard, rested with a joint open or a contact deep, or the library threw or
+// refused a figure the soak made valid (--fail-on narrows these to the kinds it names); 2 for bad
+// usage or bad input (an unknown option, a map that does not load).
 
 #include "command_line_usage.h"
 #include "soak_drop.h"

@@ -76,7 +76,6 @@ struct DropResult {
     bool restedOpen() const {
         return restTime && (endJointError > kStuckJointError || endPenetration > kStuckPenetration);
     }
-    bool failed() const { return nonFinite || restored > 0 || exploded() || restedOpen() || !threw.empty(); }
 };
 
 DropResult runDrop(const SoakInputs& inputs, std::uint64_t seed);
