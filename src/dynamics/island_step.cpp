@@ -24,6 +24,7 @@ void Island::step(Real dt, IslandContext& context) {
         settingsSet_ = true;
     }
     leaveOutFarPoints(dt, context);
+    bouncesRefused_ = false;
     bool solved = solveVelocityRows(dt, context, true);
     while (bringBackClosingPoints(dt, context)) solved = solveVelocityRows(dt, context, false);
     nearPointsOnly_ = false;
@@ -71,13 +72,60 @@ bool Island::solveVelocityRows(Real dt, IslandContext& context, bool firstSolve)
     if (context.settings.solver == SolverKind::Exact && !large(context)) system_.buildMatrix(rows_);
     context.velocityWarmStart.recall(rowKeys_, system_.states(), system_.solution());
     const bool resting = firstSolve && restedLastStep_;
-    system_.setVelocityRhs(rows_, bodies_, [dt, resting](ConstraintRow& row, Real cdot, Real previous) {
+    const bool bouncesAllowed = !bouncesRefused_;
+    int bounces = 0;
+    system_.setVelocityRhs(rows_, bodies_, [dt, resting, bouncesAllowed, &bounces](ConstraintRow& row, Real cdot, Real previous) {
+        if (!bouncesAllowed && isBounce(row)) row.target = 0;
         allowApproach(row, cdot, dt, resting ? previous : 0);
+        bounces += isBounce(row);
         holdDespiteSoftness(row, previous);
     });
+    if (bounces > 0) rememberVelocities(velocitiesBeforeSolve_);
     const bool solved = solveVelocities(context) == LcpStatus::Solved;
     applyImpulses();
+    if (bounces > 0 && bouncesGainEnergy()) {
+        restoreVelocities(velocitiesBeforeSolve_);
+        bouncesRefused_ = true;
+        ++context.counters.bouncesRefused;
+        return solveVelocityRows(dt, context, firstSolve);
+    }
     return solved;
+}
+
+// Newton's restitution law (a bounce target of −e times the approach) asks each contact for a
+// separating speed on its own. Through joints, several contacts' targets, or an approach the
+// joints would have taken away anyway, such targets can ask for more motion than the impact
+// had: a lopsided humanoid's speculative chest–forearm contact kept a bounce target of 149 units/s
+// and its solve pushed the heavy arm with 1.2e5, kinetic energy 2.9e5 → 7.7e6 in one solve.
+// Without bounce targets the velocity solve cannot gain energy (every target ≤ 0: the solve is a
+// projection, in the mass metric, onto a convex set holding v = 0), so a solve whose bounces
+// gained kinetic energy is done again without them: the impact is then inelastic.
+bool Island::bouncesGainEnergy() const {
+    Real before = 0, after = 0;
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+        RigidBody body = bodies_[b];
+        after += body.kineticEnergy();
+        body.linearVelocity = velocitiesBeforeSolve_.linear[b];
+        body.angularVelocity = velocitiesBeforeSolve_.angular[b];
+        before += body.kineticEnergy();
+    }
+    return after > before;
+}
+
+void Island::rememberVelocities(BodyVelocities& into) const {
+    into.linear.resize(bodies_.size());
+    into.angular.resize(bodies_.size());
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+        into.linear[b] = bodies_[b].linearVelocity;
+        into.angular[b] = bodies_[b].angularVelocity;
+    }
+}
+
+void Island::restoreVelocities(const BodyVelocities& from) {
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+        bodies_[b].linearVelocity = from.linear[b];
+        bodies_[b].angularVelocity = from.angular[b];
+    }
 }
 
 // Most of a resting figure's contact points are speculative ones apart by more than one step of
