@@ -21,13 +21,21 @@ constexpr int kProjectionHalvings = 5;
 // 205.7M from here), but the tree's poses strayed 1e-9 from the dense solve's over a nudged
 // humanoid's step, and from 1e-4 the steps, slower to converge, cost more than the passes spared.
 constexpr Real kChordViolation = 3e-7;
+// A move the full linear answer asks for that does not lower the violation is next cut so that no
+// body turns more than this (radians), then halved: a turn's linearisation is good to about a
+// radian, and a light torso whipped between heavy hands asked for a move 70 times too large
+// (largest violation 4.9 -> 336 units, 5.8 after five halvings; the joints then stayed open for
+// steps). Cutting every move to 0.5 rad at once changed which landings failed a solve; with 2 rad
+// af-soak's seed 6951 (a humanoid of mass ratios up to 1:284) opened by 6.0 units, at 1 rad 0.63.
+constexpr Real kTrustedTurn = 1.0;
 
 }  // namespace
 
 // Whatever remains (joint errors older than the step, limit and contact penetration, drift
 // SHAKE refused) is removed by moving positions only, so correcting it never adds energy. Each
 // pass solves the linearised problem J M⁻¹ Jᵀ Δ = −C and moves along it as far as that reduces
-// the largest violation (halving the move up to kProjectionHalvings times): with large errors,
+// the largest violation (moveWhileImproving: the whole move, or one cut to kTrustedTurn and
+// halved up to kProjectionHalvings times): with large errors,
 // or rows that nearly contradict each other (a limb pinned between another figure and its own
 // joint), the full linear move can overshoot and tear joints open instead of closing them.
 //
@@ -153,25 +161,29 @@ bool Island::chordStep(Real& violation, IslandContext& context) {
     return moveWhileImproving(violation, context);
 }
 
-// Applies the solved displacements, halved until the largest violation drops below `violation`;
+// Applies the solved displacements, whole or cut (kTrustedTurn, then halved) until the largest
+// violation drops below `violation`;
 // on success updates `violation`, otherwise puts the bodies back and returns false. Without an
 // extra source the rows stay those of the poses before the move.
 bool Island::moveWhileImproving(Real& violation, IslandContext& context) {
     beforeProjection_.assign(bodies_.begin(), bodies_.end());
-    std::span<Real> x = system_.solution();
-    for (int attempt = 0; attempt <= kProjectionHalvings; ++attempt) {
-        if (attempt == 0 && shiftsOfSolution_) {
-            for (std::size_t k = 0; k < bodies_.size(); ++k) displaceBody(bodies_[k], shiftLinear_[k], shiftAngular_[k]);
-        } else {
-            system_.applyDisplacements(bodies_);
-        }
+    if (!shiftsOfSolution_) {
+        shiftLinear_.resize(bodies_.size());
+        shiftAngular_.resize(bodies_.size());
+        accumulateResponses(rows_.all(), system_.responses(), system_.solution(), shiftLinear_, shiftAngular_);
+    }
+    Real turn = 0;
+    for (const Vec3& w : shiftAngular_) turn = std::max(turn, w.norm());
+    Real scale = 1;
+    for (int attempt = 0; attempt <= kProjectionHalvings; ++attempt, scale = std::min(scale / 2, kTrustedTurn / turn)) {
+        for (std::size_t k = 0; k < bodies_.size(); ++k)
+            displaceBody(bodies_[k], scale * shiftLinear_[k], scale * shiftAngular_[k]);
         const Real after = violationAtPoses(context);
         if (after < violation) {
             violation = after;
             return true;
         }
         std::copy(beforeProjection_.begin(), beforeProjection_.end(), bodies_.begin());
-        for (Real& v : x) v /= 2;
     }
     if (context.extraRows) writeRows(context);
     return false;
