@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
 
     const Clock::time_point start = Clock::now();
     bool partial = false;
-    int sparseFallbacks = 0, treeFallbacks = 0, projectionPasses = 0, shakeRefusals = 0, bouncesRefused = 0;
+    int sparseFallbacks = 0, treeFallbacks = 0, projectionPasses = 0, shakeRefusals = 0, plainResolves = 0;
     for (int s = 0; s < steps; ++s) {
         if (maxSeconds > 0 && seconds(Clock::now() - start) > maxSeconds) {
             partial = true;
@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
         treeFallbacks += counters.treeFallbacks;
         projectionPasses += counters.projectionPasses;
         shakeRefusals += counters.shakeRefusals;
-        bouncesRefused += counters.bouncesRefused;
+        plainResolves += counters.plainResolves;
         benchscene::readStates(world, states);
         metrics.addStep(states, seconds(t1 - t0), world.maxPenetration());
         if (sleeping) metrics.addSleep(world.atRest());
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
                               ", \"tree_fallbacks\": " + std::to_string(treeFallbacks) +
                               ", \"projection_passes\": " + std::to_string(projectionPasses) +
                               ", \"shake_refusals\": " + std::to_string(shakeRefusals) +
-                              ", \"bounces_refused\": " + std::to_string(bouncesRefused) +
+                              ", \"plain_resolves\": " + std::to_string(plainResolves) +
                               ", \"sleep\": " + (sleeping ? "true" : "false");
     // A run on more threads is a variant of its own: "tree×2".
     const std::string variant = threads > 1 ? solver + "\u00d7" + std::to_string(threads) : solver;

@@ -98,14 +98,14 @@ private:
     void statesFromImpulses(const IslandContext& context);
     void solveWithFrozenFriction(const LcpProblem& problem, IslandContext& context);
     // The velocity solve: rows written at the step's start, solved, impulses applied; solved
-    // again with the step's bounces refused (no restitution targets) if its bounces gained energy.
+    // again with plain targets (no bounce, no softness hold) if it gained energy (gainedEnergy).
     bool solveVelocityRows(Real dt, IslandContext& context, bool firstSolve);
     // A contact row asking for a separating speed (restitution).
     static bool isBounce(const ConstraintRow& row) { return row.lo == 0 && row.frictionSource < 0 && row.target > 0; }
     struct BodyVelocities {
         std::vector<Vec3> linear, angular;
     };
-    bool bouncesGainEnergy() const;
+    bool gainedEnergy() const;
     void rememberVelocities(BodyVelocities& into) const;
     void restoreVelocities(const BodyVelocities& from);
     void leaveOutFarPoints(Real dt, const IslandContext& context);
@@ -176,8 +176,8 @@ private:
     // far points that stay apart are still apart (see measuredViolation).
     bool farPointsApart_ = false;
     std::vector<Vec3> linearBefore_, angularBefore_;
-    BodyVelocities velocitiesBeforeSolve_;  // of a solve with bounces (see bouncesGainEnergy)
-    bool bouncesRefused_ = false;  // this step's bounces gained energy: its solves have none
+    BodyVelocities velocitiesBeforeSolve_;  // see gainedEnergy
+    bool plainTargets_ = false;  // a solve of this step gained energy: its solves have plain targets
     std::span<const int> localOf_;
     bool treeReady_ = false;  // the tree's structure is that of joints_ (same bodies, same joints)
 

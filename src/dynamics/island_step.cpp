@@ -12,6 +12,9 @@ namespace {
 // A point counts as apart for leaveOutFarPoints beyond this fraction of the contact slop: a
 // resting point sits at the slop, its gap zero give or take rounding, and pushes.
 constexpr Real kFarGap = 0.01;
+// A velocity solve may end with this share more kinetic energy than it began with, rounding, and
+// count as not gaining (see gainedEnergy).
+constexpr Real kEnergyRounding = 1e-9;
 
 }  // namespace
 
@@ -24,7 +27,7 @@ void Island::step(Real dt, IslandContext& context) {
         settingsSet_ = true;
     }
     leaveOutFarPoints(dt, context);
-    bouncesRefused_ = false;
+    plainTargets_ = false;
     bool solved = solveVelocityRows(dt, context, true);
     while (bringBackClosingPoints(dt, context)) solved = solveVelocityRows(dt, context, false);
     nearPointsOnly_ = false;
@@ -72,35 +75,43 @@ bool Island::solveVelocityRows(Real dt, IslandContext& context, bool firstSolve)
     if (context.settings.solver == SolverKind::Exact && !large(context)) system_.buildMatrix(rows_);
     context.velocityWarmStart.recall(rowKeys_, system_.states(), system_.solution());
     const bool resting = firstSolve && restedLastStep_;
-    const bool bouncesAllowed = !bouncesRefused_;
-    int bounces = 0;
-    system_.setVelocityRhs(rows_, bodies_, [dt, resting, bouncesAllowed, &bounces](ConstraintRow& row, Real cdot, Real previous) {
-        if (!bouncesAllowed && isBounce(row)) row.target = 0;
+    const bool plain = plainTargets_;
+    system_.setVelocityRhs(rows_, bodies_, [dt, resting, plain](ConstraintRow& row, Real cdot, Real previous) {
+        if (plain && isBounce(row)) row.target = 0;
         allowApproach(row, cdot, dt, resting ? previous : 0);
-        bounces += isBounce(row);
-        holdDespiteSoftness(row, previous);
+        if (!plain) holdDespiteSoftness(row, previous);
     });
-    if (bounces > 0) rememberVelocities(velocitiesBeforeSolve_);
+    // A drag's rows do work on purpose: its solves are not judged.
+    const bool judged = !plain && !context.extraRows;
+    if (judged) rememberVelocities(velocitiesBeforeSolve_);
     const bool solved = solveVelocities(context) == LcpStatus::Solved;
     applyImpulses();
-    if (bounces > 0 && bouncesGainEnergy()) {
+    if (judged && gainedEnergy()) {
         restoreVelocities(velocitiesBeforeSolve_);
-        bouncesRefused_ = true;
-        ++context.counters.bouncesRefused;
+        plainTargets_ = true;
+        ++context.counters.plainResolves;
         return solveVelocityRows(dt, context, firstSolve);
     }
     return solved;
 }
 
-// Newton's restitution law (a bounce target of −e times the approach) asks each contact for a
-// separating speed on its own. Through joints, several contacts' targets, or an approach the
-// joints would have taken away anyway, such targets can ask for more motion than the impact
-// had: a lopsided humanoid's speculative chest–forearm contact kept a bounce target of 149 units/s
-// and its solve pushed the heavy arm with 1.2e5, kinetic energy 2.9e5 → 7.7e6 in one solve.
-// Without bounce targets the velocity solve cannot gain energy (every target ≤ 0: the solve is a
-// projection, in the mass metric, onto a convex set holding v = 0), so a solve whose bounces
-// gained kinetic energy is done again without them: the impact is then inelastic.
-bool Island::bouncesGainEnergy() const {
+// With every target ≤ 0 a velocity solve cannot gain kinetic energy: its answer has λ·Cdot ≤ 0 on
+// every row (a pushing contact or limit moves at its target, friction opposes the sliding it
+// leaves, a joint row is held), and KE₁ − KE₀ = λᵀJv₁ − ½λᵀJM⁻¹Jᵀλ. Two kinds of target are
+// positive and can make a solve gain:
+// - Newton's restitution, −e times the approach, asked of each contact on its own. Through joints,
+//   or for an approach the joints would have taken away in the same solve, it can ask for more
+//   motion than the impact had: a lopsided humanoid's speculative chest–forearm contact kept a
+//   bounce target of 149 units/s, and the solve took the figure's kinetic energy from 2.9e5 to
+//   7.7e6 through its heavy arm.
+// - holdDespiteSoftness' c·λ_previous, meant for a steady impulse. A chain launched into a brush
+//   left a statically indeterminate loop of its fixed joint and the brush's contacts with impulses
+//   of 1e10 to 1e12 (bounded only by the rows' softness): c·λ asked its joints to come apart at
+//   up to 46 units/s, and the solve took 8.0e4 to 4.4e6.
+// A solve that ends with more kinetic energy than it started with (beyond rounding) is done again
+// with plain targets (no bounce, no hold): the impact is then inelastic, a soft row leaks as it
+// would without the hold.
+bool Island::gainedEnergy() const {
     Real before = 0, after = 0;
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
         RigidBody body = bodies_[b];
@@ -109,7 +120,7 @@ bool Island::bouncesGainEnergy() const {
         body.angularVelocity = velocitiesBeforeSolve_.angular[b];
         before += body.kineticEnergy();
     }
-    return after > before;
+    return after > before * (1 + kEnergyRounding);
 }
 
 void Island::rememberVelocities(BodyVelocities& into) const {

@@ -10,7 +10,7 @@ struct SolverCounters {
     int pivots = 0;            // exact solver: pivots of the last velocity solve
     int iterations = 0;        // PGS or figure blocks: sweeps of the last substep's solves, at most
     int shakeRefusals = 0;     // substeps whose SHAKE correction was refused (island_shake.cpp)
-    int bouncesRefused = 0;    // velocity solves done again without bounces, which gained energy (island_step.cpp)
+    int plainResolves = 0;     // velocity solves that gained energy, done again with plain targets (island_step.cpp)
     int sparseFallbacks = 0;   // Tree solver: solves its sparse path gave up (tree factorisation used)
     int treeFallbacks = 0;     // Tree solver: substeps whose rows it could not serve (dense used)
     int largeIslands = 0;      // velocity solves of the last substep beyond exactRowLimit (blocks or PGS)
@@ -21,7 +21,7 @@ struct SolverCounters {
         pivots += c.pivots;
         iterations = iterations > c.iterations ? iterations : c.iterations;
         shakeRefusals += c.shakeRefusals;
-        bouncesRefused += c.bouncesRefused;
+        plainResolves += c.plainResolves;
         sparseFallbacks += c.sparseFallbacks;
         treeFallbacks += c.treeFallbacks;
         largeIslands += c.largeIslands;
