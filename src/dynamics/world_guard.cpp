@@ -84,11 +84,13 @@ void World::State::restoreInvalidMotion() {
                   before.torqueImpulse[i] * std::max(b0.angularVelocity.norm(), b1.angularVelocity.norm());
         e.floor += 2 * mass * stepSpeed * stepSpeed;
     }
+    // Springs hold the energy of the law the substeps applied (capped, see applySpringForces).
+    const Real substep = settings.timeStep / std::max(1, settings.substeps);
     for (const Joint& j : joints) {
         if (j.type != ConstraintType::Spring) continue;
         GroupEnergy& e = of(guardGroupOf(j.bodyA != kWorldBody ? j.bodyA : j.bodyB));
-        e.before += springPotentialEnergy(j, before.bodies);
-        e.after += springPotentialEnergy(j, bodies);
+        e.before += springPotentialEnergy(j, before.bodies, substep);
+        e.after += springPotentialEnergy(j, bodies, substep);
     }
     if (drag) of(slotOfId[static_cast<std::size_t>(drag->body.figure.value)]).dragged = true;
 

@@ -290,7 +290,7 @@ void World::State::substep(Real dt) {
     report.residual = 0;
     counters.pivots = counters.iterations = counters.largeIslands = counters.projectionPasses = 0;
     for (const Joint& j : joints)
-        if (j.type == ConstraintType::Spring && (awake(j.bodyA) || awake(j.bodyB))) applySpringForces(j, bodies);
+        if (j.type == ConstraintType::Spring && (awake(j.bodyA) || awake(j.bodyB))) applySpringForces(j, bodies, dt);
     findContacts(dt);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         if (!bodyAwake[i]) continue;
