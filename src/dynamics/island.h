@@ -175,7 +175,7 @@ private:
     // The bodies moved only by the step's integration since the last bringBackClosingPoints: the
     // far points that stay apart are still apart (see measuredViolation).
     bool farPointsApart_ = false;
-    std::vector<Vec3> linearBefore_, angularBefore_;
+    BodyVelocities velocitiesAtStart_;      // of the step, while far points are left out (bringBackClosingPoints)
     BodyVelocities velocitiesBeforeSolve_;  // see gainedEnergy
     bool plainTargets_ = false;  // a solve of this step gained energy: its solves have plain targets
     std::span<const int> localOf_;

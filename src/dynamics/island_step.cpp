@@ -173,12 +173,7 @@ void Island::leaveOutFarPoints(Real dt, const IslandContext& context) {
     }
     if (farPoints_.empty()) return;
     nearPointsOnly_ = true;
-    linearBefore_.resize(bodies_.size());
-    angularBefore_.resize(bodies_.size());
-    for (std::size_t b = 0; b < bodies_.size(); ++b) {
-        linearBefore_[b] = bodies_[b].linearVelocity;
-        angularBefore_[b] = bodies_[b].angularVelocity;
-    }
+    rememberVelocities(velocitiesAtStart_);
 }
 
 // A point left out has λ = 0 (and its friction rows, boxed by it, too), which is its part of the
@@ -225,10 +220,7 @@ bool Island::bringBackClosingPoints(Real dt, const IslandContext& context) {
     }
     if (kept == before) return false;
     farPoints_.resize(kept);
-    for (std::size_t b = 0; b < bodies_.size(); ++b) {
-        bodies_[b].linearVelocity = linearBefore_[b];
-        bodies_[b].angularVelocity = angularBefore_[b];
-    }
+    restoreVelocities(velocitiesAtStart_);
     return true;
 }
 
