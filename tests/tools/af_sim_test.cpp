@@ -257,6 +257,34 @@ TEST(AfSim, ALaterRootReplacesTheFigureOfAnEarlierOne) {
     EXPECT_NE(alone.out.find("ragdoll_humanoid"), std::string::npos) << alone.out;
 }
 
+// Hands a thousand times denser than ours (0.3 -> 300, 1:200 against the forearms): the light
+// torso whips between them, and on the ground SHAKE once took the figure's kinetic energy from
+// 1.7e4 to 2.2e5, which the guard put back. Now it lands and rests without invalid motion
+// (measured: at rest after 1.82 s, joints open up to 9.3 units in the fall, closed at rest).
+TEST(AfSim, AHumanoidWithHandsAThousandTimesDenserLandsAndRestsWithoutInvalidMotion) {
+    const std::filesystem::path mod = scratch("heavy-hands");
+    std::filesystem::remove_all(mod);
+    std::filesystem::create_directories(mod / "af");
+    std::ifstream original(std::string(AF_SOURCE_DIR) + "/af/humanoid.af");
+    std::stringstream text;
+    text << original.rdbuf();
+    std::string edited = text.str();
+    for (const char* hand : {"body \"lhand\"", "body \"rhand\""}) {
+        const std::size_t body = edited.find(hand);
+        ASSERT_NE(body, std::string::npos) << hand;
+        const std::size_t at = edited.find("density", body);
+        edited.replace(at, edited.find('\n', at) - at, "density 300");
+    }
+    std::ofstream(mod / "af/humanoid.af") << edited;
+
+    const SimRun run = afSim("--root " + std::string(AF_SOURCE_DIR) + " --root " + mod.string() + " --seconds 20 --json");
+    ASSERT_EQ(run.status, 0) << run.out;
+    const nlohmann::json j = nlohmann::json::parse(run.out);
+    EXPECT_TRUE(j["invalid_motion"].empty()) << run.out;
+    ASSERT_TRUE(j["rest_time_s"].is_number()) << "it never came to rest";
+    EXPECT_LT(j["rest_time_s"].get<double>(), 3.0);
+}
+
 // A wall beside (0, 0), where the figure is dropped: the ground under the drop point is the floor,
 // but the leaning figure reaches into the wall. It is lifted until no body is inside a brush, so
 // it starts whole and lands with its joints closed (started inside, the projection would push
