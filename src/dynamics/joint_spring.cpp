@@ -115,7 +115,7 @@ void applySpringForces(const Joint& joint, std::span<RigidBody> bodies) {
 // displacement x, dF/dx = 2·k·x for F = k·x², stays below 4·m/dt² (m the mass it moves along
 // its line: ω·dt < 2 for the step's symplectic Euler). Past that each swing overshoots the last
 // and the energy grows without bound (the soak's lamps, springs stiffened up to a million times:
-// kinetic energy 14 to 26 times what the start and gravity could supply). The cap F ≤ m·x/dt²
+// kinetic energy 11 to 26 times what the start and gravity could supply). The cap F ≤ m·x/dt²
 // keeps Doom's law at most at 2·m/dt² (ω·dt = √2, room for the mass and lever changing within
 // the step) and the capped force itself at m/dt² (ω·dt = 1). Such a spring pulls as hard as the
 // step can follow and sags further than Doom's law says; Doom's own lamp at 1/60 s reaches 0.74

@@ -9,12 +9,6 @@ namespace {
 using test::boxBodyText;
 using test::figureOfBlocks;
 
-Real kineticEnergy(const World& world) {
-    Real sum = 0;
-    for (const RigidBody& b : world.bodies()) sum += b.kineticEnergy();
-    return sum;
-}
-
 // Doom's bounciness 0.4 (figure.h), of the approach the contact was found with: the velocity at
 // the step's start, before gravity's part of the step.
 TEST(Restitution, ABoxDroppedOnTheFloorLeavesItAtTheRestitutionTimesItsImpactSpeed) {
@@ -55,13 +49,13 @@ TEST(Restitution, ABounceThatWouldGainEnergyThroughAJointIsRefused) {
     const Real throwSpeed = -200;  // 3.3 units within the step: the floor 1 unit away is reached
     world.setVelocity(1, Vec3(0, 0, throwSpeed), Vec3::Zero());
     const Real m = world.bodies()[1].mass(), M = world.bodies()[0].mass();
-    const Real before = kineticEnergy(world);
+    const Real before = world.kineticEnergy();
     world.step();
     EXPECT_EQ(detail::WorldAccess::counters(world).plainResolves, 1);
-    // The weld alone: momentum m·v shared by m + M, to rounding (measured 1e-16 relative).
+    // The weld alone: momentum m·v shared by m + M, to rounding (measured: 4.6e-13 relative).
     const Real shared = m * throwSpeed / (m + M);
     for (const RigidBody& b : world.bodies()) EXPECT_NEAR(b.linearVelocity.z() / shared, 1, 1e-12);
-    EXPECT_LT(kineticEnergy(world), before * m / (m + M) * (1 + 1e-12));
+    EXPECT_LT(world.kineticEnergy(), before * m / (m + M) * (1 + 1e-12));
     EXPECT_LT(world.maxJointError(), 1e-9);
 }
 

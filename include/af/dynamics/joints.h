@@ -151,10 +151,8 @@ struct JointRowSettings {
 // Doom's spring force (docs/doom-physics.md §4.3), quadratic in the displacement, added to the bodies'
 // external force and torque. Does nothing for other joint types.
 void applySpringForces(const Joint& joint, std::span<RigidBody> bodies);
-// The same, capped at what a step of dt integrates stably: a spring stiffer, at its displacement x,
-// than the mass m it moves along its line over dt² pulls with at most m·x/dt²
-// (docs/doom-physics.md §4.3).
-// The world's step uses this one.
+// The same, capped at m·x/dt² (x the displacement, m the mass the spring moves along its line):
+// the most a step of dt integrates stably (docs/doom-physics.md §4.3). The world's step uses this one.
 void applySpringForces(const Joint& joint, std::span<RigidBody> bodies, Real dt);
 // The energy stored in a spring by Doom's law (the integral of its force without damping:
 // stretch·x³/3 stretched by x, compress·x³/3 compressed by x); 0 for other joint types.
