@@ -26,6 +26,22 @@ SimRun afSim(const std::string& arguments) { return af::test::runTool(std::strin
 
 std::filesystem::path scratch(const std::string& name) { return af::test::scratchDir() / name; }
 
+// A fresh mod folder in the scratch directory, with an empty af/ for an edited figure.
+std::filesystem::path emptyMod(const std::string& name) {
+    const std::filesystem::path mod = scratch(name);
+    std::filesystem::remove_all(mod);
+    std::filesystem::create_directories(mod / "af");
+    return mod;
+}
+
+// The source tree's humanoid.af, to edit.
+std::string sourceHumanoid() {
+    std::ifstream original(std::string(AF_SOURCE_DIR) + "/af/humanoid.af");
+    std::stringstream text;
+    text << original.rdbuf();
+    return text.str();
+}
+
 TEST(AfSim, DefaultRunDropsTheHumanoidOntoTheDefaultMapAndItRestsWithinFiveSeconds) {
     const SimRun run = afSim("--json");
     ASSERT_EQ(run.status, 0) << run.out;
@@ -231,13 +247,8 @@ TEST(AfSim, FigureSpawnsABareDeclOnTheModelItsSettingsName) {
 
 // A later --root replaces an earlier root's file of the same path, as Doom's search paths do.
 TEST(AfSim, ALaterRootReplacesTheFigureOfAnEarlierOne) {
-    const std::filesystem::path mod = scratch("mod");
-    std::filesystem::remove_all(mod);
-    std::filesystem::create_directories(mod / "af");
-    std::ifstream original(std::string(AF_SOURCE_DIR) + "/af/humanoid.af");
-    std::stringstream text;
-    text << original.rdbuf();
-    std::string edited = text.str();
+    const std::filesystem::path mod = emptyMod("mod");
+    std::string edited = sourceHumanoid();
     const std::size_t at = edited.find("totalMass");
     ASSERT_NE(at, std::string::npos);
     const std::size_t end = edited.find('\n', at);
@@ -262,13 +273,8 @@ TEST(AfSim, ALaterRootReplacesTheFigureOfAnEarlierOne) {
 // 1.7e4 to 2.2e5, which the guard put back. Now it lands and rests without invalid motion
 // (measured: at rest after 1.82 s, joints open up to 9.3 units in the fall, closed at rest).
 TEST(AfSim, AHumanoidWithHandsAThousandTimesDenserLandsAndRestsWithoutInvalidMotion) {
-    const std::filesystem::path mod = scratch("heavy-hands");
-    std::filesystem::remove_all(mod);
-    std::filesystem::create_directories(mod / "af");
-    std::ifstream original(std::string(AF_SOURCE_DIR) + "/af/humanoid.af");
-    std::stringstream text;
-    text << original.rdbuf();
-    std::string edited = text.str();
+    const std::filesystem::path mod = emptyMod("heavy-hands");
+    std::string edited = sourceHumanoid();
     for (const char* hand : {"body \"lhand\"", "body \"rhand\""}) {
         const std::size_t body = edited.find(hand);
         ASSERT_NE(body, std::string::npos) << hand;
