@@ -41,6 +41,10 @@ struct IslandContext {
     StepReport& report;
     SolverCounters& counters;
     const WarmStartCache& velocityWarmStart;  // the previous step's rows, all islands
+    // The energy the island's position projections put into its springs (stretching one while
+    // closing a joint or lifting a body out of a brush): work the guard must allow, since the
+    // projection moves positions that no force moved (world_guard.cpp).
+    Real& projectedSpringWork;
 };
 
 // What the islands are gathered from. `localOf` maps every world body to its index in its own
@@ -128,6 +132,7 @@ private:
     bool solvePositionsWithTree(IslandContext& context, Real violation);
     bool putBackViolated();
     Real largestViolation() const;
+    Real springEnergy(const IslandContext& context) const;
     // Beyond exactRowLimit rows of a pivoting solve: all rows for the dense solve, the rows
     // outside the joint trees' equality rows for the tree solver.
     bool large(const IslandContext& context) const {

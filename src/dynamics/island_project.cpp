@@ -47,6 +47,7 @@ constexpr Real kTrustedTurn = 1.0;
 // their largest violation is the measured one's bits.
 void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
     const int passes = context.counters.projectionPasses;
+    const Real springEnergyBefore = springEnergy(context);
     bool rowsAtPoses = context.extraRows || (!jointErrorsAtPoses && projectedLastStep_);
     Real violation = 0;
     if (rowsAtPoses) {
@@ -99,6 +100,17 @@ void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
     }
     projectedLastStep_ = context.counters.projectionPasses != passes;
     nearPointsOnly_ = false;
+    if (projectedLastStep_) context.projectedSpringWork += std::max(Real(0), springEnergy(context) - springEnergyBefore);
+}
+
+// The energy of the island's springs at the bodies' poses, by the law the substep applies (capped,
+// see applySpringForces).
+Real Island::springEnergy(const IslandContext& context) const {
+    const Real substep = context.settings.timeStep / std::max(1, context.settings.substeps);
+    Real energy = 0;
+    for (const Joint& j : joints_)
+        if (j.type == ConstraintType::Spring) energy += springPotentialEnergy(j, bodies_, substep);
+    return energy;
 }
 
 // The position problem holds contact friction rows at 0 (holdFrictionAtZero): their λ is 0 and

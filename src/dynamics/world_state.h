@@ -46,6 +46,7 @@ struct World::State {
     std::unique_ptr<WorkerPool> pool;
     std::vector<StepReport> islandReports;
     std::vector<SolverCounters> islandCounters;
+    std::vector<Real> islandSpringWork;  // IslandContext::projectedSpringWork of each island
     void startThreads();
     int failures = 0;
     // The step's guard (world_guard.cpp): the bodies and joint impulses before the step, and the
@@ -60,6 +61,7 @@ struct World::State {
         std::vector<RigidBody> bodies;
         std::vector<Real> jointImpulses;
         std::vector<Real> forceImpulse, torqueImpulse;
+        std::vector<Real> projectedSpringWork;  // per figure slot (and one for bodies of none)
         std::vector<int> touched;  // union-find over figure slots (and one for bodies of none)
         std::vector<GroupEnergy> energy;  // per root of `touched`
     };

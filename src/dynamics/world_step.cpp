@@ -255,9 +255,11 @@ void World::State::forEachIsland(bool ofSearch, Run run) {
     islandsOfSearch = ofSearch;
     islandReports.assign(islandCount, StepReport{});
     islandCounters.assign(islandCount, SolverCounters{});
+    islandSpringWork.assign(islandCount, 0);
     const IslandWorld world{bodies, joints, contacts.points(), localOf};
     const auto stepIsland = [&](std::size_t k) {
-        IslandContext own{settings, tuning, extraRows, bodies, islandReports[k], islandCounters[k], warmStart};
+        IslandContext own{settings, tuning, extraRows, bodies, islandReports[k], islandCounters[k], warmStart,
+                          islandSpringWork[k]};
         Island& island = islands[k];
         island.gather(members[k].bodies, members[k].joints, members[k].points, world);
         if (run(island, own)) island.scatter(bodies, joints);
@@ -273,6 +275,8 @@ void World::State::forEachIsland(bool ofSearch, Run run) {
         report.residual = std::max(report.residual, islandReports[k].residual);
         report.failures += islandReports[k].failures;
         counters.add(islandCounters[k]);
+        if (islandSpringWork[k] > 0)
+            before.projectedSpringWork[static_cast<std::size_t>(guardGroupOf(members[k].bodies.front()))] += islandSpringWork[k];
     }
 }
 

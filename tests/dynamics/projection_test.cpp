@@ -91,7 +91,8 @@ std::vector<RigidBody> projected(HubAndBar scene, SolverKind solver) {
     StepReport report;
     SolverCounters counters;
     WarmStartCache noWarmStart;
-    IslandContext context{settings, tuning, {}, scene.bodies, report, counters, noWarmStart};
+    Real springWork = 0;
+    IslandContext context{settings, tuning, {}, scene.bodies, report, counters, noWarmStart, springWork};
     const std::vector<int> bodyIds{0, 1}, jointIds{0}, pointIds{0}, localOf{0, 1};
     Island island;
     island.gather(bodyIds, jointIds, pointIds, IslandWorld{scene.bodies, scene.joints, scene.points, localOf});
