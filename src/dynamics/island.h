@@ -116,6 +116,7 @@ private:
     bool bringBackClosingPoints(Real dt, const IslandContext& context);
     bool closeDrift(Real dt, IslandContext& context);
     bool captureDrift(const IslandContext& context);
+    bool outrunsItsMove(Real dt, Real move) const;
     bool keepsMoreEnergy(Real dt, const IslandContext& context);
     // The joints' rows alone at the bodies' poses, without keys: what SHAKE reads. rows_ is whole
     // again after the next writeRows.
