@@ -73,9 +73,14 @@ bool Island::solveVelocityRows(Real dt, IslandContext& context, bool firstSolve)
     // The tree solver and PGS read the rows themselves: A is built only for the dense solve.
     system_.buildResponses(rows_, bodies_, rowInertia_);
     if (context.settings.solver == SolverKind::Exact && !large(context)) system_.buildMatrix(rows_);
-    context.velocityWarmStart.recall(rowKeys_, system_.states(), system_.solution());
-    const bool resting = firstSolve && restedLastStep_;
     const bool plain = plainTargets_;
+    if (plain) {
+        std::fill(system_.states().begin(), system_.states().end(), LcpRowState::Unknown);
+        std::fill(system_.solution().begin(), system_.solution().end(), Real(0));
+    } else {
+        context.velocityWarmStart.recall(rowKeys_, system_.states(), system_.solution());
+    }
+    const bool resting = firstSolve && restedLastStep_;
     system_.setVelocityRhs(rows_, bodies_, [dt, resting, plain](ConstraintRow& row, Real cdot, Real previous) {
         if (plain && isBounce(row)) row.target = 0;
         allowApproach(row, cdot, dt, resting ? previous : 0);

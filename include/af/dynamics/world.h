@@ -26,7 +26,9 @@
 //  7. the guard: figures that touched in the step are judged together; where the step left a
 //     NaN or an infinity, or far more kinetic energy than they had and gravity, their springs
 //     and the applied forces could supply, their bodies are put back where they were before the
-//     step, at rest, and the step's report names them (StepReport::restored). Others go on.
+//     step, still, and the step's report names them (StepReport::restored). Others go on. A
+//     figure put back rests there unless a joint of it is open there (a hostile start): then it
+//     stays awake to close it, and is reported stuck if it cannot.
 //
 // Rest and wake (docs/doom-physics.md §4.11, rest.h): after each step every awake figure's
 // RestMonitor is asked. A figure still but with a joint open or a contact deep (beyond
@@ -127,8 +129,9 @@ enum class InvalidMotion : std::uint8_t {
     EnergyGain,  // kinetic energy beyond twice what the figure had and the step could supply
 };
 
-// A figure whose motion a step made invalid: it was put back where it was before that step, at
-// rest, with its drag let go; figures it did not touch in the step were not changed. (Bodies of
+// A figure whose motion a step made invalid: it was put back where it was before that step, with
+// zero velocities and its drag let go, at rest unless a joint of it is open there (see step 7);
+// figures it did not touch in the step were not changed. (Bodies of
 // no figure, from the bodies-and-joints constructor, are put back alike, under figure value −1.)
 struct RestoredFigure {
     FigureId figure;
