@@ -103,13 +103,8 @@ void applyForce(const Joint& joint, std::span<RigidBody> bodies, const Vec3& pA,
 
 }  // namespace
 
-void applySpringForces(const Joint& joint, std::span<RigidBody> bodies) {
-    if (joint.type != ConstraintType::Spring) return;
-    const joint_detail::Pair pair = joint_detail::pairOf(joint, bodies);
-    const Vec3 pA = pair.a.point(joint.anchorA);
-    const Vec3 pB = pair.b.point(joint.anchorB);
-    applyForce(joint, bodies, pA, pB, doomSpringForce(joint, pair, pA, pB));
-}
+// Doom's law uncapped: the capped one's dt of 0.
+void applySpringForces(const Joint& joint, std::span<RigidBody> bodies) { applySpringForces(joint, bodies, 0); }
 
 // Doom integrates the force explicitly, which holds while the spring's stiffness at its
 // displacement x, dF/dx = 2·k·x for F = k·x², stays below 4·m/dt² (m the mass it moves along
@@ -134,13 +129,9 @@ void applySpringForces(const Joint& joint, std::span<RigidBody> bodies, Real dt)
     applyForce(joint, bodies, pA, pB, force);
 }
 
+// Doom's law uncapped, as for the force.
 Real springPotentialEnergy(const Joint& joint, std::span<const RigidBody> bodies) {
-    if (joint.type != ConstraintType::Spring) return 0;
-    const joint_detail::Pair pair = joint_detail::pairOf(joint, bodies);
-    const Real length = joint_detail::springLengthOf(joint, pair);
-    const SpringParameters& s = joint.spring;
-    const Real x = std::fabs(length - s.restLength);
-    return (length > s.restLength ? s.stretch : s.compress) * x * x * x / 3;
+    return springPotentialEnergy(joint, bodies, 0);
 }
 
 // ∫₀ˣ min(k·s², c·s) ds with c = m/dt² at the current pose: k·x³/3 up to the crossing s* = c/k,
