@@ -11,11 +11,12 @@
 // projection stored in springs: it moves bodies that no force moved, and closing a joint or
 // lifting a body out of a brush can stretch a spring (a lamp started inside the step brushes:
 // 5.3e3 -> 1.6e5 with no speed at all). Contacts, joints and friction do no work and the
-// projection moves no velocity, so a sound step ends with E₁ ≤ E₀ + W up to rounding; twice that is room for what the bounds miss (Doom's spring
-// damping can push). The floor, 2 Σ m (|g| dt + slop/dt)², is the energy of the group moving at
-// what gravity adds in a step and a contact slop per step: it keeps a nearly still group's
-// rounding from tripping the factor. A dragged figure's group is judged by its numbers only: the
-// drag does work that nothing here bounds.
+// projection moves no velocity, so a sound step ends with E₁ ≤ E₀ + W up to rounding; twice
+// that is room for what the bounds miss (Doom's spring damping can push). The floor,
+// 2 Σ m (|g| dt + slop/dt)², is the energy of the group moving at what gravity adds in a step and
+// a contact slop per step: it keeps a nearly still group's rounding from tripping the factor. A
+// dragged figure's group is judged by its numbers only: the drag does work that nothing here
+// bounds.
 
 #include "world_state.h"
 
