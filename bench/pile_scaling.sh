@@ -50,7 +50,7 @@ for n in $counts; do
 done
 
 python3 - "$results" "$svg" <<'PY'
-import json, sys
+import json, math, os, sys
 rows = [json.loads(l) for l in open(sys.argv[1]) if l.strip().startswith("{")]
 svg_path = sys.argv[2]
 def series(engine):
@@ -72,7 +72,6 @@ if not svg_path or not af:
     sys.exit(0)
 
 # A log-log plot: a cost linear in the figures is a line of slope 1 (the dotted guide).
-import math
 W, H, L, R, T, B = 640, 420, 70, 150, 30, 50
 points = {"af tree": [(n, af[n]["us_per_step_mean_until_rest"]) for n in sorted(af)],
           "Bullet si10": [(n, bullet[n]["us_per_step_mean_until_rest"]) for n in sorted(bullet)]}
@@ -113,7 +112,6 @@ out.append(f'<text x="{W - R + 12}" y="{T + 70}" fill="#555">dotted: linear</tex
 out.append('</svg>')
 with open(svg_path + ".tmp", "w") as f:
     f.write("\n".join(out) + "\n")
-import os
 os.replace(svg_path + ".tmp", svg_path)
 print(f"plot: {svg_path}")
 PY
