@@ -134,6 +134,7 @@ private:
     bool putBackViolated();
     Real largestViolation() const;
     Real springEnergy(const IslandContext& context) const;
+    Real liftWork(const IslandContext& context) const;
     // Beyond exactRowLimit rows of a pivoting solve: all rows for the dense solve, the rows
     // outside the joint trees' equality rows for the tree solver.
     bool large(const IslandContext& context) const {
@@ -234,6 +235,7 @@ private:
     std::vector<RigidBody> beforeShake_;
     std::vector<char> holdLimit_;  // see limitsToHold
     std::vector<RigidBody> beforeProjection_;
+    std::vector<RigidBody> projectionStart_;  // the bodies as projectPositions found them (with springs)
     // Rows solvePositionsWithTree leaves out of its LCP, with their upper bounds.
     struct HeldRow {
         std::size_t row;
