@@ -48,7 +48,8 @@ constexpr Real kTrustedTurn = 1.0;
 void Island::projectPositions(IslandContext& context, bool jointErrorsAtPoses) {
     const int passes = context.counters.projectionPasses;
     const Real springEnergyBefore = springEnergy(context);
-    const bool springs = std::any_of(joints_.begin(), joints_.end(), [](const Joint& j) { return j.type == ConstraintType::Spring; });
+    const bool springs =
+        std::any_of(joints_.begin(), joints_.end(), [](const Joint& j) { return j.type == ConstraintType::Spring; });
     if (springs) projectionStart_.assign(bodies_.begin(), bodies_.end());
     bool rowsAtPoses = context.extraRows || (!jointErrorsAtPoses && projectedLastStep_);
     Real violation = 0;
