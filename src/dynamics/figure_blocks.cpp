@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <utility>
 
@@ -133,7 +134,7 @@ void FigureBlockSolver::gatherBlocks(const ConstraintRows& rows, std::span<const
 BlockSolveResult FigureBlockSolver::solve(BlockProblem problem, const ConstraintRows& rows,
                                           std::span<const JointRowRange> ranges, std::span<const std::uint64_t> keys,
                                           RowSystem& system, std::span<const RigidBody> bodies,
-                                          const SolverTuning& tuning, Real stopChange) {
+                                          const SolverTuning& tuning, Real stopChange, WorkerPool* pool) {
     BlockSolveResult result;
     gatherBlocks(rows, ranges, keys, system, bodies);
     const std::size_t bodyCount = bodies.size();
@@ -145,15 +146,18 @@ BlockSolveResult FigureBlockSolver::solve(BlockProblem problem, const Constraint
     // Each figure's primary rows factorised, for the articulated responses of the rows between
     // figures (computed when a row first pushes); those rows start from their warm start,
     // clamped into their boxes.
-    for (Figure& figure : figures_) {
+    sweepFigures_.resize(figures_.size());
+    std::iota(sweepFigures_.begin(), sweepFigures_.end(), std::size_t{0});
+    forEachFigure(pool, sweepFigures_, [](Figure& figure) {
         if (!figure.treeReady) {
             figure.tree.setStructure(figure.localBodies, figure.localJoints);
             figure.treeReady = true;
         }
         figure.failedPivots = 0;
         figure.factored = false;
+        figure.treeFallbacks = 0;
         figure.tree.factorPrimary(figure.localRows, figure.ranges, figure.localBodies);
-    }
+    });
     const LcpProblem p = system.problem();
     const std::span<Real> x = system.solution();
     responseLinear_.clear();
@@ -170,21 +174,25 @@ BlockSolveResult FigureBlockSolver::solve(BlockProblem problem, const Constraint
     const int maxSweeps = std::max(1, tuning.blocks.maxSweeps);
     for (;;) {
         ++result.sweeps;
-        for (Figure& figure : figures_) {
-            // A block whose rows between figures did not change since its last solve keeps its answer.
-            if (figure.rows.empty() || (result.sweeps > 1 && !figure.pushed)) continue;
-            figure.failed = !solveBlock(problem, figure, rows, bodies, tuning, result);
+        // A block whose rows between figures did not change since its last solve keeps its answer.
+        sweepFigures_.clear();
+        for (std::size_t f = 0; f < figures_.size(); ++f)
+            if (!figures_[f].rows.empty() && (result.sweeps == 1 || figures_[f].pushed)) sweepFigures_.push_back(f);
+        forEachFigure(pool, sweepFigures_, [&](Figure& figure) {
+            figure.failed = !solveBlock(problem, figure, rows, bodies, tuning);
             // A failed block is tried again in the next sweep, from the frozen answer's pattern.
             figure.pushed = figure.failed;
-        }
+        });
         if (between_.empty() || result.sweeps >= maxSweeps) break;
         result.lastChange = relaxBetween(rows, system, x);
         if (result.lastChange <= stopChange) break;
     }
 
     // A block relaxed after its pivoting failed is answered by a fallback: the solve counts as failed.
-    for (const Figure& figure : figures_)
+    for (const Figure& figure : figures_) {
         if (figure.failed || !mayPivot(figure, tuning)) result.status = LcpStatus::NotConverged;
+        result.treeFallbacks += figure.treeFallbacks;
+    }
 
     // The primary rows' share of the impulses between figures (their responses held the joints
     // through it) joins the blocks' answers: the island applies M⁻¹Jᵀλ of every row.
@@ -203,13 +211,13 @@ BlockSolveResult FigureBlockSolver::solve(BlockProblem problem, const Constraint
         }
     }
     for (Figure& figure : figures_) {
-        figureLinear_.resize(figure.bodies.size());
-        figureAngular_.resize(figure.bodies.size());
+        figure.linearChange.resize(figure.bodies.size());
+        figure.angularChange.resize(figure.bodies.size());
         for (std::size_t l = 0; l < figure.bodies.size(); ++l) {
-            figureLinear_[l] = impulseLinear_[static_cast<std::size_t>(figure.bodies[l])];
-            figureAngular_[l] = impulseAngular_[static_cast<std::size_t>(figure.bodies[l])];
+            figure.linearChange[l] = impulseLinear_[static_cast<std::size_t>(figure.bodies[l])];
+            figure.angularChange[l] = impulseAngular_[static_cast<std::size_t>(figure.bodies[l])];
         }
-        figure.tree.addPrimaryImpulses(figureLinear_, figureAngular_, figure.x);
+        figure.tree.addPrimaryImpulses(figure.linearChange, figure.angularChange, figure.x);
         for (std::size_t k = 0; k < figure.rows.size(); ++k) x[figure.rows[k]] = figure.x[k];
     }
     for (const std::size_t i : between_) {
@@ -231,9 +239,23 @@ BlockSolveResult FigureBlockSolver::solve(BlockProblem problem, const Constraint
 // the later sweeps go straight to the tree with its auxiliary rows relaxed
 // (TreeSolver::setPivoting): the joints stay exact, and the block costs sweeps of its Schur
 // complement instead of thousands of pivots again.
+// Runs task on each figure of `which`, on the pool's threads when there is one: a share of the
+// figures a thread, not a figure a task (a block's solve takes a few microseconds, and a
+// figure's data then stays with one thread through the sweeps while its share is unchanged).
+void FigureBlockSolver::forEachFigure(WorkerPool* pool, std::span<const std::size_t> which,
+                                      const std::function<void(Figure&)>& task) {
+    if (pool && which.size() > 1) {
+        const std::size_t parts = std::min<std::size_t>(which.size(), static_cast<std::size_t>(pool->threads()));
+        pool->run(parts, [&](std::size_t part) {
+            for (std::size_t k = part; k < which.size(); k += parts) task(figures_[which[k]]);
+        });
+        return;
+    }
+    for (const std::size_t f : which) task(figures_[f]);
+}
+
 bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const ConstraintRows& rows,
-                                   std::span<const RigidBody> bodies, const SolverTuning& tuning,
-                                   BlockSolveResult& result) {
+                                   std::span<const RigidBody> bodies, const SolverTuning& tuning) {
     const std::size_t n = figure.rows.size();
     for (std::size_t k = 0; k < n; ++k)
         figure.b[k] = figure.islandB[k] - rowAlong(rows[figure.rows[k]], betweenLinear_, betweenAngular_);
@@ -251,7 +273,7 @@ bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const C
             }
             return true;
         }
-        ++result.treeFallbacks;
+        ++figure.treeFallbacks;
     }
 
     TreeSolveResult tree = solveByTree(problem, figure, bodies, tuning);
@@ -267,12 +289,12 @@ bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const C
         if (dense.status != LcpStatus::Solved) figure.failedPivots += dense.pivots;
     }
     statesFromImpulses(figure.localRows, figure.x, figure.states, tuning.exact.tolerance);
-    figureLinear_.assign(figure.bodies.size(), Vec3::Zero());
-    figureAngular_.assign(figure.bodies.size(), Vec3::Zero());
-    accumulateResponses(figure.localRows.all(), figure.responses, figure.x, figureLinear_, figureAngular_);
+    figure.linearChange.assign(figure.bodies.size(), Vec3::Zero());
+    figure.angularChange.assign(figure.bodies.size(), Vec3::Zero());
+    accumulateResponses(figure.localRows.all(), figure.responses, figure.x, figure.linearChange, figure.angularChange);
     for (std::size_t l = 0; l < figure.bodies.size(); ++l) {
-        blockLinear_[static_cast<std::size_t>(figure.bodies[l])] = figureLinear_[l];
-        blockAngular_[static_cast<std::size_t>(figure.bodies[l])] = figureAngular_[l];
+        blockLinear_[static_cast<std::size_t>(figure.bodies[l])] = figure.linearChange[l];
+        blockAngular_[static_cast<std::size_t>(figure.bodies[l])] = figure.angularChange[l];
     }
     return tree.status == LcpStatus::Solved;
 }
@@ -331,12 +353,12 @@ LcpResult FigureBlockSolver::solveDense(Figure& figure, const SolverTuning& tuni
     problem.findex = figure.findex;
     problem.mu = figure.mu;
     problem.cfm = figure.cfm;
-    exact_.setSettings(tuning.exact);
-    const LcpResult result = exact_.solve(problem, figure.x, figure.states);
+    figure.exact.setSettings(tuning.exact);
+    const LcpResult result = figure.exact.solve(problem, figure.x, figure.states);
     if (result.status == LcpStatus::Solved) return result;
     std::copy(figure.lastX.begin(), figure.lastX.end(), figure.x.begin());
-    pgs_.setSettings(tuning.pgs);
-    frozenBoxes_.solve(problem, figure.x, figure.states, exact_, pgs_);
+    figure.pgs.setSettings(tuning.pgs);
+    figure.frozenBoxes.solve(problem, figure.x, figure.states, figure.exact, figure.pgs);
     return result;
 }
 

@@ -21,6 +21,7 @@
 #include "solver_tuning.h"
 #include "sparse_lcp.h"
 #include "tree_solver.h"
+#include "worker_pool.h"
 
 #include <cstdint>
 #include <span>
@@ -56,9 +57,12 @@ public:
     // out (states as statesFromImpulses gives them). `keys` name the rows (warm_start.h). The
     // sweeps stop when one changes no row between figures by more than stopChange in its own
     // units (velocity, or length for Position), or after tuning.blocks.maxSweeps.
+    // With a pool, the blocks of a sweep are solved on its threads: a block reads the impulses
+    // between figures, which no block writes, and writes only its own figure's state, so the
+    // answer is the same bits on any number of threads.
     BlockSolveResult solve(BlockProblem problem, const ConstraintRows& rows, std::span<const JointRowRange> ranges,
                            std::span<const std::uint64_t> keys, RowSystem& system, std::span<const RigidBody> bodies,
-                           const SolverTuning& tuning, Real stopChange);
+                           const SolverTuning& tuning, Real stopChange, WorkerPool* pool = nullptr);
 
 private:
     struct Figure {
@@ -87,11 +91,19 @@ private:
         // the next sweep's nearly equal block often fails again.
         long failedPivots = 0;
         bool factored = false;  // the tree holds this solve's factor(): later sweeps reuse it
+        int treeFallbacks = 0;  // this solve's block solves the sparse path handed to the tree
+        // solveDense's solvers, and scratch per body of the figure (the velocity change of the
+        // block's answer, the impulses between figures on it).
+        LcpExactSolver exact;
+        LcpPgsSolver pgs;
+        FrozenBoxFallback frozenBoxes;
+        std::vector<Vec3> linearChange, angularChange;
     };
     void gatherBlocks(const ConstraintRows& rows, std::span<const JointRowRange> ranges,
                       std::span<const std::uint64_t> keys, RowSystem& system, std::span<const RigidBody> bodies);
     bool solveBlock(BlockProblem problem, Figure& figure, const ConstraintRows& rows, std::span<const RigidBody> bodies,
-                    const SolverTuning& tuning, BlockSolveResult& result);
+                    const SolverTuning& tuning);
+    void forEachFigure(WorkerPool* pool, std::span<const std::size_t> which, const std::function<void(Figure&)>& task);
     TreeSolveResult solveByTree(BlockProblem problem, Figure& figure, std::span<const RigidBody> bodies,
                                 const SolverTuning& tuning);
     LcpResult solveDense(Figure& figure, const SolverTuning& tuning);
@@ -121,11 +133,7 @@ private:
     // between figures.
     std::vector<Vec3> blockLinear_, blockAngular_, betweenLinear_, betweenAngular_;
     std::vector<Vec3> impulseLinear_, impulseAngular_;  // per island body: Jᵀλ of the rows between figures
-    std::vector<Vec3> figureLinear_, figureAngular_;    // scratch, per body of one figure
-    // solveDense's solvers, for every block in turn.
-    LcpExactSolver exact_;
-    LcpPgsSolver pgs_;
-    FrozenBoxFallback frozenBoxes_;
+    std::vector<std::size_t> sweepFigures_;             // the figures a sweep solves
 };
 
 }  // namespace af

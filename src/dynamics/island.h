@@ -45,6 +45,9 @@ struct IslandContext {
     // closing a joint or lifting a body out of a brush): work the guard must allow, since the
     // projection moves positions that no force moved (world_guard.cpp).
     Real& projectedSpringWork;
+    // Threads for the work within the island (the figure blocks of a pile), when it is stepped
+    // alone: the world's pool, or none while the islands share it out.
+    WorkerPool* pool = nullptr;
 };
 
 // What the islands are gathered from. `localOf` maps every world body to its index in its own

@@ -292,7 +292,7 @@ LcpStatus Island::solveByFigures(BlockProblem problem, IslandContext& context, R
     }
     blocks_.setPivotRowLimit(context.settings.exactRowLimit);
     const BlockSolveResult r =
-        blocks_.solve(problem, rows_, ranges_, rowKeys_, system_, bodies_, context.tuning, stopChange);
+        blocks_.solve(problem, rows_, ranges_, rowKeys_, system_, bodies_, context.tuning, stopChange, context.pool);
     context.counters.iterations = std::max(context.counters.iterations, r.sweeps);
     context.counters.treeFallbacks += r.treeFallbacks;
     context.report.residual = std::max(context.report.residual, r.residual);

@@ -4,6 +4,24 @@
 
 namespace af {
 
+namespace {
+
+// How long a thread spins for the next run (or for the last task of this one) before it sleeps
+// on the condition variable (about 0.1 ms on this machine). A pile's figure blocks make a run every sweep,
+// tens of microseconds apart; waking a sleeping thread costs as much as the work. Bench pile of
+// eight, 300 steps on two threads: 5.2 s without spinning, 4.1–5.2 s spinning 20 000 times,
+// 4.25 s at 200 000, against 4.8 s on one thread.
+constexpr int kSpins = 200000;
+
+template <class Done>
+bool spinUntil(Done done) {
+    for (int i = 0; i < kSpins; ++i)
+        if (done()) return true;
+    return done();
+}
+
+}  // namespace
+
 WorkerPool::WorkerPool(int threads) {
     for (int i = 1; i < threads; ++i) workers_.emplace_back([this](std::stop_token stop) { work(stop); });
 }
@@ -22,7 +40,12 @@ void WorkerPool::run(std::size_t count, const std::function<void(std::size_t)>& 
     ++generation_;
     wake_.notify_all();
     takeTasks(lock);
-    done_.wait(lock, [this] { return finished_ == count_; });
+    if (finished_ != count_) {
+        lock.unlock();
+        spinUntil([this] { return finished_.load(std::memory_order_acquire) == count_; });
+        lock.lock();
+        done_.wait(lock, [this] { return finished_ == count_; });
+    }
     task_ = nullptr;
     if (error_) std::rethrow_exception(error_);
 }
@@ -53,6 +76,9 @@ void WorkerPool::work(std::stop_token stop) {
     std::unique_lock lock(mutex_);
     std::size_t seen = generation_;
     while (true) {
+        lock.unlock();
+        spinUntil([&] { return generation_.load(std::memory_order_acquire) != seen || stop.stop_requested(); });
+        lock.lock();
         wake_.wait(lock, stop, [&] { return generation_ != seen; });
         if (stop.stop_requested()) return;
         seen = generation_;

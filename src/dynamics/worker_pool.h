@@ -5,6 +5,7 @@
 // index alone (each island has its own solvers and scratch; the step merges their reports in
 // island order afterwards): the results are then the same bits whatever the thread count.
 
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -36,8 +37,10 @@ private:
     std::condition_variable_any wake_;
     std::condition_variable done_;
     const std::function<void(std::size_t)>* task_ = nullptr;
-    std::size_t count_ = 0, next_ = 0, finished_ = 0;
-    std::size_t generation_ = 0;
+    std::size_t count_ = 0, next_ = 0;
+    // Written under the mutex; read without it too, by threads spinning before they sleep.
+    std::atomic<std::size_t> finished_ = 0;
+    std::atomic<std::size_t> generation_ = 0;
     std::exception_ptr error_;
     std::vector<std::jthread> workers_;
 };

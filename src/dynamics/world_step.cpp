@@ -249,6 +249,7 @@ void World::State::buildIslands() {
 // writes them back to its own places, and reports into its own counters, which are merged in
 // island order. So the islands run on the worker threads (in any order, on any thread) to the
 // same bits as one after another, except with extra rows, which read the whole world's bodies.
+// Islands stepped one after another get the pool for their own work (a pile's figure blocks).
 template <class Run>
 void World::State::forEachIsland(bool ofSearch, Run run) {
     if (!(ofSearch && searchKept && islandsOfSearch && !extraRows)) buildIslands();
@@ -257,14 +258,15 @@ void World::State::forEachIsland(bool ofSearch, Run run) {
     islandCounters.assign(islandCount, SolverCounters{});
     islandSpringWork.assign(islandCount, 0);
     const IslandWorld world{bodies, joints, contacts.points(), localOf};
+    const bool shareIslands = pool && islandCount > 1 && !extraRows;
     const auto stepIsland = [&](std::size_t k) {
         IslandContext own{settings, tuning, extraRows, bodies, islandReports[k], islandCounters[k], warmStart,
-                          islandSpringWork[k]};
+                          islandSpringWork[k], shareIslands ? nullptr : pool.get()};
         Island& island = islands[k];
         island.gather(members[k].bodies, members[k].joints, members[k].points, world);
         if (run(island, own)) island.scatter(bodies, joints);
     };
-    if (pool && islandCount > 1 && !extraRows) {
+    if (shareIslands) {
         warmStart.sort();  // the index the islands' recalls would otherwise build, each on its own
         pool->run(islandCount, stepIsland);
     } else {

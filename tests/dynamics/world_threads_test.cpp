@@ -55,6 +55,35 @@ TEST(WorldThreads, IslandsSteppedOnTwoOrThreeThreadsGiveTheSameBitsAsOnOne) {
     EXPECT_GT(blockedSteps, 0) << "the pair never made an island of blocks";
 }
 
+// A pile alone is one island: its figure blocks are what the threads share out.
+World pile(int threads) {
+    WorldSettings settings;
+    settings.threads = threads;
+    settings.exactRowLimit = 150;
+    World world(settings);
+    for (int i = 0; i < 4; ++i) world.addFigure(humanoidAt(Vec3(0, 0, 20 + 30 * i), 37 * i, 90));
+    world.addStaticPlane(Plane{Vec3::UnitZ(), 0});
+    return world;
+}
+
+TEST(WorldThreads, APileSolvedByBlocksOnTwoOrThreeThreadsGivesTheSameBitsAsOnOne) {
+    World one = pile(1), two = pile(2), three = pile(3);
+    int blockedSteps = 0;
+    for (int i = 0; i < 150; ++i) {
+        one.step();
+        two.step();
+        three.step();
+        blockedSteps += detail::WorldAccess::counters(one).largeIslands > 0 ? 1 : 0;
+        for (const World* other : {&two, &three}) {
+            for (std::size_t b = 0; b < one.bodies().size(); ++b)
+                ASSERT_TRUE(sameBits(one.bodies()[b], other->bodies()[b])) << "step " << i << " body " << b;
+            EXPECT_EQ(one.lastStep().residual, other->lastStep().residual);
+            EXPECT_EQ(detail::WorldAccess::counters(one).iterations, detail::WorldAccess::counters(*other).iterations);
+        }
+    }
+    EXPECT_GT(blockedSteps, 20) << "the pile was not solved by blocks";
+}
+
 TEST(WorldThreads, APoolRunsEveryTaskOnceAndPassesOnTheFirstException) {
     WorkerPool pool(3);
     std::vector<std::atomic<int>> runs(1000);
