@@ -110,7 +110,8 @@ struct WorldSettings {
     bool comeToRest = true;
     Real impulseThreshold = 500;  // mass units · units/s (Doom's IMPULSE_THRESHOLD)
     // Threads that step independent islands (figures that do not touch) side by side, the
-    // calling thread one of them; 1 to 256. Each island is solved alone whatever the count, so a
+    // calling thread one of them; 1 to 256. An island stepped alone (a pile) shares out the
+    // exact solves of its figures instead. Each island is solved alone whatever the count, so a
     // world steps to the same bits on any number of threads. While a drag or extra rows are
     // active the islands are stepped one after another (their rows read the world's bodies).
     int threads = 1;
