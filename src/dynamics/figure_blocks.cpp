@@ -232,13 +232,6 @@ BlockSolveResult FigureBlockSolver::solve(BlockProblem problem, const Constraint
     return result;
 }
 
-// The block of one figure with the impulses between figures as given: its b less what they
-// change of its rows' velocities (or errors). The sparse path first, as for a figure alone,
-// then the tree solver, then the dense one; false when none solves it (solveDense's fallback
-// answer stands). Once its failed pivoting in this solve has spent the block's pivot budget,
-// the later sweeps go straight to the tree with its auxiliary rows relaxed
-// (TreeSolver::setPivoting): the joints stay exact, and the block costs sweeps of its Schur
-// complement instead of thousands of pivots again.
 // Runs task on each figure of `which`, on the pool's threads when there is one: a share of the
 // figures a thread, not a figure a task (a block's solve takes a few microseconds, and a
 // figure's data then stays with one thread through the sweeps while its share is unchanged).
@@ -254,6 +247,13 @@ void FigureBlockSolver::forEachFigure(WorkerPool* pool, std::span<const std::siz
     for (const std::size_t f : which) task(figures_[f]);
 }
 
+// The block of one figure with the impulses between figures as given: its b less what they
+// change of its rows' velocities (or errors). The sparse path first, as for a figure alone,
+// then the tree solver, then the dense one; false when none solves it (solveDense's fallback
+// answer stands). Once its failed pivoting in this solve has spent the block's pivot budget,
+// the later sweeps go straight to the tree with its auxiliary rows relaxed
+// (TreeSolver::setPivoting): the joints stay exact, and the block costs sweeps of its Schur
+// complement instead of thousands of pivots again.
 bool FigureBlockSolver::solveBlock(BlockProblem problem, Figure& figure, const ConstraintRows& rows,
                                    std::span<const RigidBody> bodies, const SolverTuning& tuning) {
     const std::size_t n = figure.rows.size();
